@@ -1,0 +1,71 @@
+// Delaunay tetrahedralization by incremental insertion (Bowyer-Watson) in a 5-tet box
+// (George-Hecht-Saltel 1990, section 2).
+#pragma once
+
+#include "TetMesh.h"
+
+#include <string>
+#include <vector>
+
+namespace tetmesher
+{
+
+struct DelaunayOptions
+{
+  // Box corners are placed this many bounding-box diagonals away from the points.
+  double boxEnlargement = 0.5;
+  // Check the result exhaustively (exact) after construction; for tests and debugging.
+  bool validate = false;
+};
+
+struct DelaunayResult
+{
+  bool ok = false;
+  std::string error;
+  // Vertex ids that were exact duplicates of an earlier vertex (not inserted), and for
+  // each the id of the vertex it duplicates.
+  std::vector<VertexId> duplicates;
+  std::vector<VertexId> duplicateOf;
+  // Ids of the 8 box corner vertices appended after the input points.
+  VertexId firstBoxVertex = -1;
+};
+
+// Triangulates mesh.coords (vertex ids 0..n-1, n = mesh.vertexCount() on entry). Appends the
+// 8 box corners as vertices n..n+7, then inserts the input points in BRIO/Hilbert order.
+// On return every live tet is positively oriented, the box tets are present (no ghost
+// tets), and mesh.neighbors is symmetric with kNoNeighbor only on the box's faces.
+DelaunayResult buildDelaunay(TetMesh& mesh, const DelaunayOptions& options = {});
+
+// Scratch buffers reused across insertions, so that inserting does not allocate.
+struct InsertionWorkspace;
+InsertionWorkspace* createInsertionWorkspace();
+void destroyInsertionWorkspace(InsertionWorkspace* workspace);
+
+enum class InsertStatus
+{
+  Inserted,
+  Duplicate,        // an existing vertex has the same coordinates
+  OnConstraint,     // the point lies exactly on a constrained face: not inserted
+  OutsideMesh       // the walk left the triangulation (point outside the box)
+};
+
+struct InsertResult
+{
+  InsertStatus status;
+  TetId tet;         // a live tet incident to the new vertex (Inserted), or the duplicate's tet
+  VertexId existing; // the duplicated vertex (Duplicate)
+};
+
+// Inserts vertex v (already in mesh.coords) into a valid triangulation. The walk starts at
+// `hint` (any live tet). The cavity is the set of tets whose circumsphere contains v
+// (insphereSoS), grown by adjacency from the tet containing v, never across a constrained
+// face (TetMesh flags), and shrunk until v sees every cavity boundary face strictly
+// positively, so the result is valid even when constraints make it non-Delaunay. Constraint
+// flags on the cavity boundary are preserved.
+InsertResult insertVertex(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspace& workspace);
+
+// Locates the live tet containing point p (exact walk that terminates), starting at hint.
+// Returns -1 if p is outside the triangulation.
+TetId locatePoint(const TetMesh& mesh, const double* p, TetId hint);
+
+} // namespace tetmesher

@@ -1,0 +1,33 @@
+// Exact geometric predicates. Every topological decision of the mesher goes through these:
+// a floating-point filter with a proven error bound decides the easy cases, exact expansion
+// arithmetic decides the rest. No epsilon anywhere.
+#pragma once
+
+#include "TetMesh.h"
+
+namespace tetmesher
+{
+namespace predicates
+{
+
+// Sign of det[a-d; b-d; c-d]: +1 when d lies below the plane through a,b,c (a,b,c
+// counterclockwise seen from above), -1 above, 0 when the four points are coplanar.
+// Exact for every finite double input.
+int orient3d(const double* a, const double* b, const double* c, const double* d);
+
+// For a positively oriented tet (a,b,c,d): +1 when e is strictly inside its circumsphere,
+// -1 outside, 0 on it. Exact.
+int insphere(const double* a, const double* b, const double* c, const double* d, const double* e);
+
+// Sign of the 2D orientation of a,b,c projected on the coordinate plane that drops axis
+// `dropAxis` (0,1,2). Exact. Used for coplanar configurations.
+int orient2d(const double* a, const double* b, const double* c, int dropAxis);
+
+// In-sphere with symbolic perturbation (simulation of simplicity on the lifted points, by
+// vertex id): never returns 0 for five distinct points, and is consistent, so co-spherical
+// input (grids, boxes) gives one well-defined Delaunay triangulation. Points are looked up
+// in mesh.coords by id; (a,b,c,d) must be positively oriented.
+int insphereSoS(const TetMesh& mesh, VertexId a, VertexId b, VertexId c, VertexId d, VertexId e);
+
+} // namespace predicates
+} // namespace tetmesher

@@ -1,0 +1,124 @@
+// TetMesh: the flat-array tetrahedral mesh shared by every stage of the mesher.
+//
+// Layout (after Gmsh HXT): 4 vertex ids per tet, 4 neighbour references per tet encoded
+// as 4*t+f (the face of the neighbour that is glued to ours), one flag byte per tet.
+// Deleted slots are kept on a free list and reused, so ids stay small and arrays dense.
+//
+// Conventions every stage relies on:
+//  - A live tet (a,b,c,d) is positively oriented: orient3d(a,b,c,d) > 0 in Shewchuk's
+//    convention, i.e. det[a-d; b-d; c-d] > 0 (d lies below the plane of a,b,c seen ccw).
+//  - Face f of a tet is the face opposite its vertex f; kFaceVertices[f] lists that face's
+//    vertices ordered so that their right-hand normal points out of the tet.
+//  - kNoNeighbor marks a face on the hull of the triangulation.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace tetmesher
+{
+
+using VertexId = std::int32_t;
+using TetId = std::int32_t;
+using FaceRef = std::int32_t; // 4*t+f
+
+constexpr FaceRef kNoNeighbor = -1;
+constexpr VertexId kDeletedTet = -1;
+
+// Outward-oriented vertex triples of the face opposite each vertex of a positive tet.
+constexpr int kFaceVertices[4][3] = { { 1, 3, 2 }, { 0, 2, 3 }, { 0, 3, 1 }, { 0, 1, 2 } };
+
+// Per-tet flag bits. Bits 0..3: face f is a constraint (an input triangle) that the
+// Delaunay cavity must not cross. Bits 4..7 are scratch bits for one algorithm at a time.
+enum TetFlag : std::uint8_t
+{
+  kConstrainedFace0 = 1u << 0,
+  kScratchBit0 = 1u << 4,
+  kScratchBit1 = 1u << 5,
+  kScratchBit2 = 1u << 6,
+  kScratchBit3 = 1u << 7,
+};
+
+inline FaceRef makeFaceRef(TetId t, int f) { return 4 * t + f; }
+inline TetId faceTet(FaceRef r) { return r >> 2; }
+inline int faceIndex(FaceRef r) { return r & 3; }
+
+struct TetMesh
+{
+  std::vector<double> coords;      // 3 doubles per vertex
+  std::vector<VertexId> tets;      // 4 per tet; tets[4t] == kDeletedTet marks a free slot
+  std::vector<FaceRef> neighbors;  // 4 per tet
+  std::vector<std::uint8_t> flags; // 1 per tet
+  std::vector<TetId> freeTets;     // deleted slots available for reuse
+
+  VertexId vertexCount() const { return static_cast<VertexId>(coords.size() / 3); }
+  TetId tetCapacity() const { return static_cast<TetId>(tets.size() / 4); }
+  TetId liveTetCount() const { return tetCapacity() - static_cast<TetId>(freeTets.size()); }
+  const double* point(VertexId v) const { return &coords[3 * static_cast<std::size_t>(v)]; }
+
+  VertexId addVertex(double x, double y, double z)
+  {
+    coords.push_back(x);
+    coords.push_back(y);
+    coords.push_back(z);
+    return vertexCount() - 1;
+  }
+
+  bool isDeleted(TetId t) const { return tets[4 * static_cast<std::size_t>(t)] == kDeletedTet; }
+  VertexId vertex(TetId t, int i) const { return tets[4 * static_cast<std::size_t>(t) + i]; }
+  FaceRef neighbor(TetId t, int f) const { return neighbors[4 * static_cast<std::size_t>(t) + f]; }
+  bool isConstrained(TetId t, int f) const { return (flags[t] >> f) & 1u; }
+
+  void setConstrained(TetId t, int f, bool on)
+  {
+    if (on)
+      flags[t] = static_cast<std::uint8_t>(flags[t] | (1u << f));
+    else
+      flags[t] = static_cast<std::uint8_t>(flags[t] & ~(1u << f));
+  }
+
+  // Creates a tet with no neighbours and no flags, reusing a free slot when there is one.
+  TetId addTet(VertexId a, VertexId b, VertexId c, VertexId d)
+  {
+    TetId t;
+    if (!freeTets.empty())
+    {
+      t = freeTets.back();
+      freeTets.pop_back();
+    }
+    else
+    {
+      t = tetCapacity();
+      tets.resize(tets.size() + 4);
+      neighbors.resize(neighbors.size() + 4);
+      flags.push_back(0);
+    }
+    std::size_t base = 4 * static_cast<std::size_t>(t);
+    tets[base] = a;
+    tets[base + 1] = b;
+    tets[base + 2] = c;
+    tets[base + 3] = d;
+    for (int f = 0; f < 4; ++f)
+      neighbors[base + f] = kNoNeighbor;
+    flags[t] = 0;
+    return t;
+  }
+
+  // Frees the slot. Neighbours still pointing here must be re-glued by the caller.
+  void deleteTet(TetId t)
+  {
+    tets[4 * static_cast<std::size_t>(t)] = kDeletedTet;
+    freeTets.push_back(t);
+  }
+
+  // Glues face f of t to face g of u (both directions). u may be kNoNeighbor-encoded.
+  void glue(TetId t, int f, TetId u, int g)
+  {
+    neighbors[4 * static_cast<std::size_t>(t) + f] = makeFaceRef(u, g);
+    neighbors[4 * static_cast<std::size_t>(u) + g] = makeFaceRef(t, f);
+  }
+
+  void setHull(TetId t, int f) { neighbors[4 * static_cast<std::size_t>(t) + f] = kNoNeighbor; }
+};
+
+} // namespace tetmesher
