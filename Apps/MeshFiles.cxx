@@ -1,0 +1,568 @@
+#include "MeshFiles.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellType.h"
+#include "vtkCommand.h"
+#include "vtkDataSet.h"
+#include "vtkDataSetReader.h"
+#include "vtkGeometryFilter.h"
+#include "vtkNew.h"
+#include "vtkOBJReader.h"
+#include "vtkPLYReader.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSTLReader.h"
+#include "vtkUnstructuredGrid.h"
+#include "vtkUnstructuredGridWriter.h"
+#include "vtkXMLGenericDataObjectReader.h"
+#include "vtkXMLUnstructuredGridWriter.h"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <sstream>
+#include <sys/stat.h>
+#include <vector>
+
+namespace tetmesher
+{
+namespace cli
+{
+namespace
+{
+
+// Collects the error messages a VTK reader emits, so that we can report them as ours.
+class ErrorCollector : public vtkCommand
+{
+public:
+  static ErrorCollector* New() { return new ErrorCollector; }
+  void Execute(vtkObject*, unsigned long, void* data) override
+  {
+    if (data)
+    {
+      Messages += static_cast<const char*>(data);
+    }
+  }
+  std::string Messages;
+};
+
+[[noreturn]] void Fail(const std::string& path, const std::string& what)
+{
+  throw FileError(path + ": " + what);
+}
+
+void RequireReadableFile(const std::string& path)
+{
+  struct stat info;
+  if (stat(path.c_str(), &info) != 0)
+  {
+    Fail(path, "no such file");
+  }
+  if (!S_ISREG(info.st_mode))
+  {
+    Fail(path, "not a regular file");
+  }
+  std::ifstream probe(path);
+  if (!probe)
+  {
+    Fail(path, "cannot be opened for reading");
+  }
+  if (info.st_size == 0)
+  {
+    Fail(path, "the file is empty");
+  }
+}
+
+template <typename Reader>
+void RunReader(Reader* reader, const std::string& path)
+{
+  vtkNew<ErrorCollector> errors;
+  reader->AddObserver(vtkCommand::ErrorEvent, errors);
+  reader->Update();
+  if (!errors->Messages.empty() || reader->GetErrorCode() != 0)
+  {
+    std::string detail = errors->Messages;
+    // VTK messages carry a source location prefix; keep the text after the last newline.
+    detail.erase(std::remove(detail.begin(), detail.end(), '\r'), detail.end());
+    while (!detail.empty() && detail.back() == '\n')
+    {
+      detail.pop_back();
+    }
+    Fail(path, "unreadable (" + (detail.empty() ? std::string("reader error") : detail) + ")");
+  }
+}
+
+// A line-oriented tokenizer that skips '#' comments and knows the line number for errors.
+class TokenFile
+{
+public:
+  explicit TokenFile(const std::string& path)
+    : Path(path)
+    , Stream(path)
+  {
+  }
+  bool NextLine(std::istringstream& line)
+  {
+    std::string text;
+    while (std::getline(this->Stream, text))
+    {
+      ++this->LineNumber;
+      auto hash = text.find('#');
+      if (hash != std::string::npos)
+      {
+        text.erase(hash);
+      }
+      if (text.find_first_not_of(" \t\r") == std::string::npos)
+      {
+        continue;
+      }
+      line.clear();
+      line.str(text);
+      return true;
+    }
+    return false;
+  }
+  [[noreturn]] void Fail(const std::string& what) const
+  {
+    cli::Fail(this->Path, "line " + std::to_string(this->LineNumber) + ": " + what);
+  }
+  std::string Path;
+  std::ifstream Stream;
+  long LineNumber = 0;
+};
+
+std::string Stem(const std::string& path)
+{
+  auto dot = path.rfind('.');
+  return dot == std::string::npos ? path : path.substr(0, dot);
+}
+
+// TetGen: NAME.node ("n dim attrs markers" then "id x y z ...") and NAME.ele
+// ("m nodesPerTet attrs" then "id v0 v1 v2 v3 ..."), indices from 0 or 1.
+vtkSmartPointer<vtkUnstructuredGrid> ReadTetGen(const std::string& path)
+{
+  const std::string nodePath = Stem(path) + ".node";
+  const std::string elePath = Stem(path) + ".ele";
+  RequireReadableFile(nodePath);
+  RequireReadableFile(elePath);
+  TokenFile node(nodePath);
+  std::istringstream line;
+  long count = 0, dim = 0, attributes = 0, markers = 0;
+  if (!node.NextLine(line) || !(line >> count >> dim) || count <= 0 || dim != 3)
+  {
+    node.Fail("expected a header 'pointCount 3 attributes markers'");
+  }
+  line >> attributes >> markers;
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(count);
+  long firstId = -1;
+  for (long i = 0; i < count; ++i)
+  {
+    long id;
+    double x, y, z;
+    if (!node.NextLine(line) || !(line >> id >> x >> y >> z))
+    {
+      node.Fail("expected point " + std::to_string(i) + " as 'id x y z'");
+    }
+    if (i == 0)
+    {
+      firstId = id;
+    }
+    if (id - firstId != i)
+    {
+      node.Fail("point ids must be consecutive");
+    }
+    points->SetPoint(i, x, y, z);
+  }
+  TokenFile ele(elePath);
+  long tetCount = 0, perTet = 0;
+  if (!ele.NextLine(line) || !(line >> tetCount >> perTet) || tetCount < 0 || perTet < 4)
+  {
+    ele.Fail("expected a header 'tetCount nodesPerTet attributes'");
+  }
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  grid->SetPoints(points);
+  grid->Allocate(tetCount);
+  for (long t = 0; t < tetCount; ++t)
+  {
+    long id;
+    vtkIdType v[4];
+    if (!ele.NextLine(line) || !(line >> id >> v[0] >> v[1] >> v[2] >> v[3]))
+    {
+      ele.Fail("expected tetrahedron " + std::to_string(t) + " as 'id v0 v1 v2 v3'");
+    }
+    for (auto& vertex : v)
+    {
+      vertex -= firstId;
+      if (vertex < 0 || vertex >= count)
+      {
+        ele.Fail("vertex index out of range (the .node file has " + std::to_string(count) +
+          " points starting at " + std::to_string(firstId) + ")");
+      }
+    }
+    grid->InsertNextCell(VTK_TETRA, 4, v);
+  }
+  return grid;
+}
+
+// Gmsh ASCII .msh, format 2.2 and 4.1: nodes and 4-node tetrahedra (element type 4);
+// other elements (triangles, lines, points) are skipped.
+vtkSmartPointer<vtkUnstructuredGrid> ReadGmsh(const std::string& path)
+{
+  RequireReadableFile(path);
+  TokenFile file(path);
+  std::istringstream line;
+  std::string token;
+  double version = 0;
+  int fileType = 0;
+  std::vector<double> coords;
+  std::vector<long> nodeTags;
+  std::vector<long> tets;
+  while (file.NextLine(line))
+  {
+    line >> token;
+    if (token == "$MeshFormat")
+    {
+      if (!file.NextLine(line) || !(line >> version >> fileType))
+      {
+        file.Fail("expected 'version fileType dataSize' after $MeshFormat");
+      }
+      if (fileType != 0)
+      {
+        file.Fail("binary .msh files are not supported; save as ASCII (Gmsh: -format msh2 or "
+                  "msh41 with Mesh.Binary=0)");
+      }
+      if (version < 2 || version >= 5)
+      {
+        file.Fail("unsupported .msh version " + std::to_string(version));
+      }
+    }
+    else if (token == "$Nodes")
+    {
+      if (version == 0)
+      {
+        file.Fail("$Nodes before $MeshFormat");
+      }
+      if (version < 3)
+      {
+        long n;
+        if (!file.NextLine(line) || !(line >> n))
+          file.Fail("expected the node count");
+        for (long i = 0; i < n; ++i)
+        {
+          long tag;
+          double x, y, z;
+          if (!file.NextLine(line) || !(line >> tag >> x >> y >> z))
+            file.Fail("expected a node 'tag x y z'");
+          nodeTags.push_back(tag);
+          coords.insert(coords.end(), { x, y, z });
+        }
+      }
+      else
+      {
+        long blocks, n, minTag, maxTag;
+        if (!file.NextLine(line) || !(line >> blocks >> n >> minTag >> maxTag))
+          file.Fail("expected 'numEntityBlocks numNodes minTag maxTag'");
+        for (long b = 0; b < blocks; ++b)
+        {
+          long dim, entity, parametric, inBlock;
+          if (!file.NextLine(line) || !(line >> dim >> entity >> parametric >> inBlock))
+            file.Fail("expected a node block header");
+          std::vector<long> tags(static_cast<std::size_t>(inBlock));
+          for (auto& tag : tags)
+          {
+            if (!file.NextLine(line) || !(line >> tag))
+              file.Fail("expected a node tag");
+          }
+          for (long i = 0; i < inBlock; ++i)
+          {
+            double x, y, z;
+            if (!file.NextLine(line) || !(line >> x >> y >> z))
+              file.Fail("expected node coordinates 'x y z'");
+            nodeTags.push_back(tags[static_cast<std::size_t>(i)]);
+            coords.insert(coords.end(), { x, y, z });
+          }
+        }
+      }
+    }
+    else if (token == "$Elements")
+    {
+      if (version < 3)
+      {
+        long n;
+        if (!file.NextLine(line) || !(line >> n))
+          file.Fail("expected the element count");
+        for (long i = 0; i < n; ++i)
+        {
+          long tag, type, tagCount;
+          if (!file.NextLine(line) || !(line >> tag >> type >> tagCount))
+            file.Fail("expected an element 'tag type numTags ...'");
+          long skip;
+          for (long k = 0; k < tagCount; ++k)
+            line >> skip;
+          if (type == 4)
+          {
+            long v[4];
+            if (!(line >> v[0] >> v[1] >> v[2] >> v[3]))
+              file.Fail("expected the 4 nodes of a tetrahedron");
+            tets.insert(tets.end(), v, v + 4);
+          }
+        }
+      }
+      else
+      {
+        long blocks, n, minTag, maxTag;
+        if (!file.NextLine(line) || !(line >> blocks >> n >> minTag >> maxTag))
+          file.Fail("expected 'numEntityBlocks numElements minTag maxTag'");
+        for (long b = 0; b < blocks; ++b)
+        {
+          long dim, entity, type, inBlock;
+          if (!file.NextLine(line) || !(line >> dim >> entity >> type >> inBlock))
+            file.Fail("expected an element block header");
+          for (long i = 0; i < inBlock; ++i)
+          {
+            if (!file.NextLine(line))
+              file.Fail("expected an element");
+            if (type == 4)
+            {
+              long tag, v[4];
+              if (!(line >> tag >> v[0] >> v[1] >> v[2] >> v[3]))
+                file.Fail("expected 'tag n0 n1 n2 n3' of a tetrahedron");
+              tets.insert(tets.end(), v, v + 4);
+            }
+          }
+        }
+      }
+    }
+  }
+  if (version == 0)
+  {
+    Fail(path, "not a Gmsh mesh (no $MeshFormat section)");
+  }
+  // Node tags are arbitrary positive integers: map them to point ids.
+  long maxTag = 0;
+  for (long tag : nodeTags)
+    maxTag = std::max(maxTag, tag);
+  std::vector<vtkIdType> idOfTag(static_cast<std::size_t>(maxTag + 1), -1);
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(nodeTags.size()));
+  for (std::size_t i = 0; i < nodeTags.size(); ++i)
+  {
+    idOfTag[static_cast<std::size_t>(nodeTags[i])] = static_cast<vtkIdType>(i);
+    points->SetPoint(static_cast<vtkIdType>(i), &coords[3 * i]);
+  }
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  grid->SetPoints(points);
+  grid->Allocate(static_cast<vtkIdType>(tets.size() / 4));
+  for (std::size_t t = 0; t < tets.size(); t += 4)
+  {
+    vtkIdType v[4];
+    for (int k = 0; k < 4; ++k)
+    {
+      long tag = tets[t + static_cast<std::size_t>(k)];
+      if (tag <= 0 || tag > maxTag || idOfTag[static_cast<std::size_t>(tag)] < 0)
+        Fail(path, "tetrahedron " + std::to_string(t / 4) + " uses undefined node " +
+            std::to_string(tag));
+      v[k] = idOfTag[static_cast<std::size_t>(tag)];
+    }
+    grid->InsertNextCell(VTK_TETRA, 4, v);
+  }
+  return grid;
+}
+
+// Object File Format: "OFF", then "points faces edges", points, and faces "n v0 .. v(n-1)".
+vtkSmartPointer<vtkPolyData> ReadOff(const std::string& path)
+{
+  TokenFile file(path);
+  std::istringstream line;
+  std::string header;
+  if (!file.NextLine(line) || !(line >> header) || header.find("OFF") == std::string::npos)
+  {
+    file.Fail("not an OFF file (expected the keyword OFF)");
+  }
+  long pointCount = 0, faceCount = 0;
+  // The counts may follow OFF on the same line.
+  if (!(line >> pointCount >> faceCount))
+  {
+    if (!file.NextLine(line) || !(line >> pointCount >> faceCount))
+    {
+      file.Fail("expected 'pointCount faceCount edgeCount'");
+    }
+  }
+  if (pointCount < 0 || faceCount < 0)
+  {
+    file.Fail("negative counts");
+  }
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(pointCount);
+  for (long i = 0; i < pointCount; ++i)
+  {
+    double x, y, z;
+    if (!file.NextLine(line) || !(line >> x >> y >> z))
+    {
+      file.Fail("expected point " + std::to_string(i) + " as 'x y z'");
+    }
+    points->SetPoint(i, x, y, z);
+  }
+  vtkNew<vtkCellArray> polys;
+  std::vector<vtkIdType> ids;
+  for (long f = 0; f < faceCount; ++f)
+  {
+    long n;
+    if (!file.NextLine(line) || !(line >> n) || n < 3)
+    {
+      file.Fail("expected face " + std::to_string(f) + " as 'n v0 ... v(n-1)' with n >= 3");
+    }
+    ids.resize(static_cast<std::size_t>(n));
+    for (auto& id : ids)
+    {
+      if (!(line >> id) || id < 0 || id >= pointCount)
+      {
+        file.Fail("face " + std::to_string(f) + " has a missing or out-of-range point index");
+      }
+    }
+    polys->InsertNextCell(n, ids.data());
+  }
+  auto surface = vtkSmartPointer<vtkPolyData>::New();
+  surface->SetPoints(points);
+  surface->SetPolys(polys);
+  return surface;
+}
+
+} // namespace
+
+std::string LowerExtension(const std::string& path)
+{
+  auto dot = path.rfind('.');
+  auto slash = path.rfind('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+  {
+    return "";
+  }
+  std::string ext = path.substr(dot);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+vtkSmartPointer<vtkDataSet> ReadVolumeMesh(const std::string& path)
+{
+  const std::string ext = LowerExtension(path);
+  if (ext == ".node" || ext == ".ele")
+  {
+    return ReadTetGen(path);
+  }
+  RequireReadableFile(path);
+  if (ext == ".msh")
+  {
+    return ReadGmsh(path);
+  }
+  if (ext == ".vtu" || ext == ".vtp" || ext == ".vts" || ext == ".vtr" || ext == ".vti")
+  {
+    vtkNew<vtkXMLGenericDataObjectReader> reader;
+    reader->SetFileName(path.c_str());
+    RunReader(reader.Get(), path);
+    auto data = vtkDataSet::SafeDownCast(reader->GetOutputDataObject(0));
+    if (!data)
+      Fail(path, "does not hold a dataset");
+    return data;
+  }
+  if (ext == ".vtk")
+  {
+    vtkNew<vtkDataSetReader> reader;
+    reader->SetFileName(path.c_str());
+    RunReader(reader.Get(), path);
+    auto data = vtkDataSet::SafeDownCast(reader->GetOutputDataObject(0));
+    if (!data)
+      Fail(path, "does not hold a dataset");
+    return data;
+  }
+  Fail(path, "unknown file type '" + ext + "' (use .vtu, .vtk, .node/.ele or .msh)");
+}
+
+vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path)
+{
+  const std::string ext = LowerExtension(path);
+  RequireReadableFile(path);
+  vtkSmartPointer<vtkPolyData> surface;
+  if (ext == ".off")
+  {
+    return ReadOff(path);
+  }
+  if (ext == ".stl")
+  {
+    vtkNew<vtkSTLReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->MergingOn();
+    RunReader(reader.Get(), path);
+    surface = reader->GetOutput();
+  }
+  else if (ext == ".obj")
+  {
+    vtkNew<vtkOBJReader> reader;
+    reader->SetFileName(path.c_str());
+    RunReader(reader.Get(), path);
+    surface = reader->GetOutput();
+  }
+  else if (ext == ".ply")
+  {
+    vtkNew<vtkPLYReader> reader;
+    reader->SetFileName(path.c_str());
+    RunReader(reader.Get(), path);
+    surface = reader->GetOutput();
+  }
+  else if (ext == ".vtp" || ext == ".vtk" || ext == ".vtu")
+  {
+    vtkSmartPointer<vtkDataSet> data = ReadVolumeMesh(path);
+    surface = vtkPolyData::SafeDownCast(data);
+    if (!surface)
+    {
+      vtkNew<vtkGeometryFilter> geometry; // e.g. a surface stored in a .vtu
+      geometry->SetInputData(data);
+      geometry->Update();
+      surface = geometry->GetOutput();
+    }
+  }
+  else
+  {
+    Fail(path, "unknown surface type '" + ext + "' (use .stl .obj .ply .vtp .vtk .off)");
+  }
+  return surface;
+}
+
+void WriteVolumeMesh(vtkUnstructuredGrid* mesh, const std::string& path)
+{
+  const std::string ext = LowerExtension(path);
+  int ok = 0;
+  if (ext == ".vtu")
+  {
+    vtkNew<vtkXMLUnstructuredGridWriter> writer;
+    writer->SetFileName(path.c_str());
+    writer->SetInputData(mesh);
+    writer->SetDataModeToAppended();
+    writer->SetCompressorTypeToZLib();
+    ok = writer->Write();
+  }
+  else if (ext == ".vtk")
+  {
+    vtkNew<vtkUnstructuredGridWriter> writer;
+    writer->SetFileName(path.c_str());
+    writer->SetInputData(mesh);
+    writer->SetFileTypeToBinary();
+    ok = writer->Write();
+  }
+  else
+  {
+    Fail(path, "unknown output type '" + ext + "' (use .vtu or .vtk)");
+  }
+  if (!ok)
+  {
+    Fail(path, "could not be written");
+  }
+}
+
+} // namespace cli
+} // namespace tetmesher

@@ -1,0 +1,38 @@
+// Reading and writing the files the `tetmesher` command line accepts: whatever VTK reads
+// (.vtu .vtk .vtp .stl .obj .ply), plus the formats of the meshers users compare us with:
+// TetGen .node/.ele and Gmsh ASCII .msh (versions 2.2 and 4.1), and .off surfaces.
+#pragma once
+
+#include "vtkSmartPointer.h"
+
+#include <stdexcept>
+#include <string>
+
+class vtkDataSet;
+class vtkPolyData;
+class vtkUnstructuredGrid;
+
+namespace tetmesher
+{
+namespace cli
+{
+
+// A defect in an input file: the message names the file and what is wrong.
+struct FileError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+// Reads a volume mesh. Throws FileError.
+vtkSmartPointer<vtkDataSet> ReadVolumeMesh(const std::string& path);
+
+// Reads a triangulated surface. Throws FileError.
+vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path);
+
+// Writes an unstructured grid (.vtu or legacy .vtk by extension). Throws FileError.
+void WriteVolumeMesh(vtkUnstructuredGrid* mesh, const std::string& path);
+
+std::string LowerExtension(const std::string& path);
+
+} // namespace cli
+} // namespace tetmesher

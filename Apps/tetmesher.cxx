@@ -1,0 +1,44 @@
+// tetmesher: the command-line front end.
+//   tetmesher quality MESH [--size-array NAME] [--histogram]
+// Exit status: 0 success, 1 bad input or failure (the message names file and defect),
+// 2 wrong usage.
+#include "CommandLine.h"
+
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+namespace
+{
+const char* const kUsage = R"(usage: tetmesher COMMAND [ARGS]
+
+Boundary-conforming tetrahedral meshing for VTK.
+
+commands:
+  quality MESH   print the quality summary of a tetrahedral mesh
+                 (.vtu .vtk, TetGen .node/.ele, Gmsh ASCII .msh)
+
+Run 'tetmesher COMMAND --help' for the options of a command.
+)";
+}
+
+int main(int argc, char* argv[])
+{
+  if (argc < 2)
+  {
+    std::fputs(kUsage, stderr);
+    return 2;
+  }
+  const std::string command = argv[1];
+  if (command == "--help" || command == "-h" || command == "help")
+  {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  if (command == "quality")
+  {
+    return tetmesher::cli::RunQuality(argc - 2, argv + 2);
+  }
+  std::fprintf(stderr, "tetmesher: unknown command '%s'\n\n%s", command.c_str(), kUsage);
+  return 2;
+}

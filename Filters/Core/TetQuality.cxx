@@ -1,0 +1,157 @@
+#include "TetQuality.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tetmesher
+{
+namespace
+{
+
+struct Vec3
+{
+  double x, y, z;
+};
+
+Vec3 sub(const double* p, const double* q) { return { p[0] - q[0], p[1] - q[1], p[2] - q[2] }; }
+Vec3 cross(const Vec3& u, const Vec3& v)
+{
+  return { u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x };
+}
+double dot(const Vec3& u, const Vec3& v) { return u.x * v.x + u.y * v.y + u.z * v.z; }
+double norm(const Vec3& u) { return std::sqrt(dot(u, u)); }
+
+constexpr double kRadToDeg = 57.29577951308232;
+// The 6 edges as vertex pairs, and for each the two faces (by opposite vertex) sharing it.
+constexpr int kEdges[6][2] = { { 0, 1 }, { 0, 2 }, { 0, 3 }, { 1, 2 }, { 1, 3 }, { 2, 3 } };
+
+// Everything but the length unit: volume, face areas, dihedral angles, edge lengths.
+struct RawShape
+{
+  double volume;
+  double areaSum;
+  double edgeLength[6];
+  double minDihedral, maxDihedral;
+};
+
+RawShape measureRaw(const double* a, const double* b, const double* c, const double* d)
+{
+  const double* p[4] = { a, b, c, d };
+  RawShape s{};
+  s.volume = dot(sub(b, a), cross(sub(c, a), sub(d, a))) / 6.0;
+  // Outward area vectors of the face opposite each vertex (any consistent sign works for
+  // angles: the dihedral angle at an edge is pi minus the angle between the two normals).
+  Vec3 normal[4];
+  const int faces[4][3] = { { 1, 2, 3 }, { 0, 3, 2 }, { 0, 1, 3 }, { 0, 2, 1 } };
+  for (int f = 0; f < 4; ++f)
+  {
+    normal[f] = cross(sub(p[faces[f][1]], p[faces[f][0]]), sub(p[faces[f][2]], p[faces[f][0]]));
+    s.areaSum += 0.5 * norm(normal[f]);
+  }
+  s.minDihedral = 180.0;
+  s.maxDihedral = 0.0;
+  for (int e = 0; e < 6; ++e)
+  {
+    int i = kEdges[e][0], j = kEdges[e][1];
+    s.edgeLength[e] = norm(sub(p[i], p[j]));
+    // The two faces containing edge (i,j) are those opposite the other two vertices.
+    int k = -1, l = -1;
+    for (int v = 0; v < 4; ++v)
+      if (v != i && v != j)
+        (k < 0 ? k : l) = v;
+    double nk = norm(normal[k]), nl = norm(normal[l]);
+    double angle = 0.0;
+    if (nk > 0 && nl > 0)
+    {
+      double cosine = std::clamp(dot(normal[k], normal[l]) / (nk * nl), -1.0, 1.0);
+      angle = 180.0 - std::acos(cosine) * kRadToDeg;
+    }
+    s.minDihedral = std::min(s.minDihedral, angle);
+    s.maxDihedral = std::max(s.maxDihedral, angle);
+  }
+  return s;
+}
+
+TetShape finish(const RawShape& s, double inradius, double longestEdge)
+{
+  TetShape shape;
+  shape.signedVolume = s.volume;
+  shape.minDihedral = s.minDihedral;
+  shape.maxDihedral = s.maxDihedral;
+  if (s.volume > 0 && longestEdge > 0)
+    shape.quality = std::min(1.0, kQualityScale * inradius / longestEdge);
+  return shape;
+}
+
+} // namespace
+
+TetShape measureTet(const double* a, const double* b, const double* c, const double* d)
+{
+  RawShape s = measureRaw(a, b, c, d);
+  double inradius = s.areaSum > 0 ? 3.0 * s.volume / s.areaSum : 0.0;
+  double longest = *std::max_element(s.edgeLength, s.edgeLength + 6);
+  return finish(s, inradius, longest);
+}
+
+TetShape measureTetScaled(
+  const double* a, const double* b, const double* c, const double* d, const double h[4])
+{
+  RawShape s = measureRaw(a, b, c, d);
+  double longest = 0.0, inverseSum = 0.0;
+  for (int e = 0; e < 6; ++e)
+  {
+    double l = s.edgeLength[e];
+    longest = std::max(longest, 0.5 * (l / h[kEdges[e][0]] + l / h[kEdges[e][1]]));
+  }
+  for (int i = 0; i < 4; ++i)
+    inverseSum += 1.0 / h[i];
+  double inradius = s.areaSum > 0 ? 3.0 * s.volume / s.areaSum : 0.0;
+  // Inradius in units of the harmonic mean of h: r / hmean = r * (sum 1/h_i) / 4.
+  return finish(s, inradius * inverseSum / 4.0, longest);
+}
+
+QualitySummary summarizeQuality(const std::vector<TetShape>& shapes)
+{
+  QualitySummary summary;
+  summary.count = static_cast<std::int64_t>(shapes.size());
+  if (shapes.empty())
+    return summary;
+  std::vector<double> q;
+  q.reserve(shapes.size());
+  double sum = 0.0;
+  std::int64_t below01 = 0, below03 = 0;
+  summary.minDihedral = 180.0;
+  summary.maxDihedral = 0.0;
+  for (const TetShape& s : shapes)
+  {
+    q.push_back(s.quality);
+    sum += s.quality;
+    below01 += s.quality < 0.1;
+    below03 += s.quality < 0.3;
+    summary.minDihedral = std::min(summary.minDihedral, s.minDihedral);
+    summary.maxDihedral = std::max(summary.maxDihedral, s.maxDihedral);
+  }
+  std::size_t rank = (q.size() + 99) / 100; // nearest rank of the 1st percentile, >= 1
+  std::nth_element(q.begin(), q.begin() + static_cast<std::ptrdiff_t>(rank - 1), q.end());
+  summary.percentile1 = q[rank - 1];
+  summary.minimum = *std::min_element(q.begin(), q.end());
+  summary.maximum = *std::max_element(q.begin(), q.end());
+  summary.mean = sum / static_cast<double>(q.size());
+  summary.shareBelow01 = static_cast<double>(below01) / static_cast<double>(q.size());
+  summary.shareBelow03 = static_cast<double>(below03) / static_cast<double>(q.size());
+  return summary;
+}
+
+std::vector<std::int64_t> qualityHistogram(const std::vector<TetShape>& shapes, int binCount)
+{
+  std::vector<std::int64_t> bins(static_cast<std::size_t>(std::max(binCount, 1)), 0);
+  for (const TetShape& s : shapes)
+  {
+    int bin = static_cast<int>(s.quality * static_cast<double>(bins.size()));
+    bin = std::clamp(bin, 0, static_cast<int>(bins.size()) - 1);
+    ++bins[static_cast<std::size_t>(bin)];
+  }
+  return bins;
+}
+
+} // namespace tetmesher

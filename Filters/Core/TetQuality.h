@@ -1,0 +1,57 @@
+// Element quality of the paper (George-Hecht-Saltel 1990, section 4.2):
+//   Q(T) = k * r / lmax,  k = 2*sqrt(6)
+// with r the inradius and lmax the longest edge, so that the regular tet has Q = 1 and a flat
+// tet Q = 0. Also the dihedral angles that users of other meshers compare against.
+//
+// Size-scaled variant (h given at the 4 vertices): lengths are measured in units of h. An
+// edge AB counts 0.5 * (l/h(A) + l/h(B)) as in the paper; the inradius, which belongs to
+// no edge, is measured in the harmonic mean of the four h (the same averaging of 1/h).
+// For constant h both reduce to the classical Q.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace tetmesher
+{
+
+constexpr double kQualityScale = 4.898979485566356; // 2*sqrt(6)
+
+struct TetShape
+{
+  double quality = 0;        // k r / lmax in [0, 1]; 0 for flat or inverted tets
+  double minDihedral = 0;    // degrees
+  double maxDihedral = 0;    // degrees
+  double signedVolume = 0;   // det[b-a, c-a, d-a] / 6: > 0 in VTK's VTK_TETRA orientation
+                             // (the right-hand normal of a,b,c points to d). Note: that
+                             // is orient3d < 0 in Shewchuk's sign, TetMesh's convention.
+};
+
+// Shape of the tet (a,b,c,d) in VTK order. Quality is 0 when signedVolume is not positive.
+TetShape measureTet(const double* a, const double* b, const double* c, const double* d);
+
+// As measureTet, but Q in units of the size field: h[i] is the wanted size at vertex i (> 0).
+TetShape measureTetScaled(
+  const double* a, const double* b, const double* c, const double* d, const double h[4]);
+
+// Summary statistics of a set of Q values (the numbers the CLI prints and the filters store).
+struct QualitySummary
+{
+  std::int64_t count = 0;
+  double minimum = 0;
+  double maximum = 0;
+  double mean = 0;
+  double percentile1 = 0;     // the 1st percentile (nearest rank)
+  double shareBelow01 = 0;    // fraction of tets with Q < 0.1
+  double shareBelow03 = 0;    // fraction of tets with Q < 0.3
+  double minDihedral = 0;     // degrees, over all tets
+  double maxDihedral = 0;     // degrees, over all tets
+};
+
+QualitySummary summarizeQuality(const std::vector<TetShape>& shapes);
+
+// Histogram of Q over [0, 1] in `binCount` equal bins; Q = 1 falls in the last bin.
+std::vector<std::int64_t> qualityHistogram(const std::vector<TetShape>& shapes, int binCount);
+
+} // namespace tetmesher

@@ -1,0 +1,41 @@
+// VTK glue shared by vtkTetQuality and vtkTetMesher: measure every tet of a dataset with the
+// core's formula and turn the results into VTK arrays, field data and a histogram table.
+#pragma once
+
+#include "TetQuality.h"
+
+#include <string>
+#include <vector>
+
+class vtkCellData;
+class vtkDataArray;
+class vtkDataSet;
+class vtkFieldData;
+class vtkTable;
+
+namespace tetmesher
+{
+namespace vtkglue
+{
+
+struct TetQualityResult
+{
+  std::vector<double> Quality;     // per cell; NaN for cells that are not tetrahedra
+  std::vector<double> MinDihedral; // per cell, degrees
+  std::vector<double> MaxDihedral; // per cell, degrees
+  QualitySummary Summary;
+  std::vector<std::int64_t> Histogram;
+};
+
+// Measures every VTK_TETRA cell of `input`. `size` (optional) is a point array of h > 0.
+// Returns false with `error` naming the defect (no tetrahedra, a non-finite coordinate,
+// a bad size value) and where it is.
+bool ComputeTetQuality(vtkDataSet* input, vtkDataArray* size, int binCount,
+  TetQualityResult& result, std::string& error);
+
+void AttachQualityArrays(const TetQualityResult& result, vtkCellData* cellData);
+void AttachQualitySummary(const QualitySummary& summary, vtkFieldData* fieldData);
+void FillHistogramTable(const std::vector<std::int64_t>& bins, vtkTable* table);
+
+} // namespace vtkglue
+} // namespace tetmesher
