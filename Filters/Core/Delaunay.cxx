@@ -1,0 +1,609 @@
+// Incremental Delaunay insertion (Bowyer-Watson) in a 5-tet box, George-Hecht-Saltel 1990 §2.
+//
+// Insertion of a point p:
+//  1. locate: a visibility walk from a hint tet, crossing a face that p sees negatively
+//     (exact orient3d). Faces are tried from a pseudo-random rotating start, which makes the
+//     walk terminate with probability 1 even in non-Delaunay meshes (Devillers, Pion,
+//     Teillaud 2002); a step limit falls back to an exhaustive scan, so it always terminates.
+//  2. cavity: grown by adjacency from the located tet, over tets whose circumsphere contains
+//     p (insphereSoS > 0), never across a constrained face.
+//  3. (checked mode, used by insertVertex) the cavity is shrunk until p sees every cavity
+//     boundary face strictly positively and no vertex is enclosed, which is automatic for
+//     a Delaunay mesh but not after boundary recovery has flipped or constrained it.
+//  4. the cavity tets are replaced by the cones (boundary face, p), reusing the cavity's
+//     slots first. Internal faces of the cone are glued through a small edge hash table.
+//
+// Scratch flag bits used (and cleared before returning): kScratchBit0 = tet is in the
+// cavity, kScratchBit1 = tet was tested and is not in the cavity.
+#include "Delaunay.h"
+
+#include "FilteredPredicates.h"
+#include "HilbertSort.h"
+#include "MeshValidation.h"
+#include "Predicates.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace tetmesher
+{
+
+struct InsertionWorkspace
+{
+  struct BoundaryFace
+  {
+    VertexId v[3];    // outward from the cavity
+    FaceRef outside;  // the face of the tet beyond, or kNoNeighbor
+    bool constrained; // constrained flag carried over to the new tet
+  };
+  struct EdgeSlot
+  {
+    VertexId from, to;
+    FaceRef face;
+  };
+
+  std::vector<TetId> cavity;
+  std::vector<TetId> rejected;
+  std::vector<BoundaryFace> boundary;
+  std::vector<EdgeSlot> edgeTable = std::vector<EdgeSlot>(256, EdgeSlot{ -1, -1, 0 });
+  std::vector<int> usedSlots;
+  std::vector<std::uint32_t> vertexStamp; // checked mode only
+  std::uint32_t stamp = 0;
+  std::uint64_t rng = 0x2545F4914F6CDD1DULL; // fixed seed: deterministic walks
+
+  InsertionWorkspace()
+  {
+    cavity.reserve(256);
+    rejected.reserve(256);
+    boundary.reserve(512);
+    usedSlots.reserve(1024);
+  }
+
+  unsigned nextRandom()
+  {
+    rng ^= rng << 13;
+    rng ^= rng >> 7;
+    rng ^= rng << 17;
+    return static_cast<unsigned>(rng >> 32);
+  }
+};
+
+InsertionWorkspace* createInsertionWorkspace()
+{
+  return new InsertionWorkspace;
+}
+void destroyInsertionWorkspace(InsertionWorkspace* workspace)
+{
+  delete workspace;
+}
+
+namespace
+{
+
+constexpr std::uint8_t kInCavity = kScratchBit0;
+constexpr std::uint8_t kRejected = kScratchBit1;
+
+inline const double* pointOf(const double* coords, VertexId v)
+{
+  return coords + 3 * static_cast<std::size_t>(v);
+}
+
+// orient3d of face f of tet t (outward vertex order) with p: > 0 when p is on the inner side.
+inline int faceOrient(const TetMesh& mesh, const double* coords, TetId t, int f, const double* p)
+{
+  const VertexId* tv = &mesh.tets[4 * static_cast<std::size_t>(t)];
+  return predicates::orient3dFiltered(pointOf(coords, tv[kFaceVertices[f][0]]),
+    pointOf(coords, tv[kFaceVertices[f][1]]),
+    pointOf(coords, tv[kFaceVertices[f][2]]),
+    p);
+}
+
+inline bool faceConstrained(const TetMesh& mesh, TetId t, int f)
+{
+  if (mesh.flags[t] & (1u << f))
+    return true;
+  const FaceRef n = mesh.neighbor(t, f);
+  return n != kNoNeighbor && (mesh.flags[faceTet(n)] & (1u << faceIndex(n)));
+}
+
+bool closureContains(const TetMesh& mesh, const double* coords, TetId t, const double* p)
+{
+  for (int f = 0; f < 4; ++f)
+    if (faceOrient(mesh, coords, t, f, p) < 0)
+      return false;
+  return true;
+}
+
+TetId exhaustiveLocate(const TetMesh& mesh, const double* p)
+{
+  const double* coords = mesh.coords.data();
+  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+    if (!mesh.isDeleted(t) && closureContains(mesh, coords, t, p))
+      return t;
+  return -1;
+}
+
+TetId walk(const TetMesh& mesh, const double* p, TetId start, InsertionWorkspace& ws)
+{
+  const double* coords = mesh.coords.data();
+  TetId t = start;
+  int enteredBy = -1;
+  const std::size_t limit = 64 + 4 * static_cast<std::size_t>(mesh.liveTetCount());
+  for (std::size_t steps = 0; steps < limit; ++steps)
+  {
+    const unsigned r = ws.nextRandom();
+    bool moved = false;
+    for (int i = 0; i < 4; ++i)
+    {
+      const int f = static_cast<int>((r + i) & 3u);
+      if (f == enteredBy) // p is known to be strictly on the inner side of this face
+        continue;
+      if (faceOrient(mesh, coords, t, f, p) < 0)
+      {
+        const FaceRef n = mesh.neighbor(t, f);
+        if (n == kNoNeighbor)
+          return -1;
+        t = faceTet(n);
+        enteredBy = faceIndex(n);
+        moved = true;
+        break;
+      }
+    }
+    if (!moved)
+      return t;
+  }
+  return exhaustiveLocate(mesh, p);
+}
+
+void removeFromCavity(TetMesh& mesh, InsertionWorkspace& ws, TetId t)
+{
+  mesh.flags[t] = static_cast<std::uint8_t>((mesh.flags[t] & ~kInCavity) | kRejected);
+  ws.rejected.push_back(t);
+}
+
+void clearMarks(TetMesh& mesh, InsertionWorkspace& ws)
+{
+  for (TetId t : ws.cavity)
+    mesh.flags[t] = static_cast<std::uint8_t>(mesh.flags[t] & ~(kInCavity | kRejected));
+  for (TetId t : ws.rejected)
+    mesh.flags[t] = static_cast<std::uint8_t>(mesh.flags[t] & ~(kInCavity | kRejected));
+}
+
+enum class ShrinkOutcome
+{
+  Ok,
+  OnConstraint
+};
+
+// Checked mode: removes cavity tets until the cavity is a star around p whose boundary faces
+// p sees strictly positively, that crosses no constrained face, and that encloses no vertex.
+// Tets whose closure contains p can never be removed; needing to is "p is on a constraint".
+ShrinkOutcome shrinkToStar(TetMesh& mesh, const double* p, TetId start, InsertionWorkspace& ws)
+{
+  const double* coords = mesh.coords.data();
+  auto inCavity = [&mesh](TetId u) { return (mesh.flags[u] & kInCavity) != 0; };
+  auto tryRemove = [&](TetId c) -> bool
+  {
+    if (c == start || closureContains(mesh, coords, c, p))
+      return false;
+    removeFromCavity(mesh, ws, c);
+    return true;
+  };
+  for (;;)
+  {
+    bool changed = false;
+    for (std::size_t i = 0; i < ws.cavity.size(); ++i)
+    {
+      const TetId c = ws.cavity[i];
+      if (!inCavity(c))
+        continue;
+      for (int f = 0; f < 4; ++f)
+      {
+        const FaceRef n = mesh.neighbor(c, f);
+        const bool constrained = faceConstrained(mesh, c, f);
+        const bool outsideInCavity = n != kNoNeighbor && inCavity(faceTet(n));
+        if (outsideInCavity && !constrained)
+          continue; // internal face
+        if (faceOrient(mesh, coords, c, f, p) > 0)
+          continue; // a visible boundary face (or a constrained face p sees from inside c)
+        // p does not see face f from inside c: c must go.
+        if (!tryRemove(c))
+          return ShrinkOutcome::OnConstraint;
+        changed = true;
+        break;
+      }
+    }
+    if (!changed)
+    {
+      // No vertex may be swallowed: every vertex of a cavity tet must lie on its boundary.
+      if (ws.vertexStamp.size() < static_cast<std::size_t>(mesh.vertexCount()))
+        ws.vertexStamp.resize(static_cast<std::size_t>(mesh.vertexCount()) + 1024, 0);
+      if (++ws.stamp == 0)
+      {
+        std::fill(ws.vertexStamp.begin(), ws.vertexStamp.end(), 0);
+        ws.stamp = 1;
+      }
+      for (TetId c : ws.cavity)
+        if (inCavity(c))
+          for (int f = 0; f < 4; ++f)
+          {
+            const FaceRef n = mesh.neighbor(c, f);
+            if (n == kNoNeighbor || !inCavity(faceTet(n)) || faceConstrained(mesh, c, f))
+              for (int k = 0; k < 3; ++k)
+                ws.vertexStamp[static_cast<std::size_t>(mesh.vertex(c, kFaceVertices[f][k]))] =
+                  ws.stamp;
+          }
+      for (std::size_t i = 0; i < ws.cavity.size(); ++i)
+      {
+        const TetId c = ws.cavity[i];
+        if (!inCavity(c))
+          continue;
+        for (int k = 0; k < 4; ++k)
+          if (ws.vertexStamp[static_cast<std::size_t>(mesh.vertex(c, k))] != ws.stamp)
+          {
+            if (!tryRemove(c))
+              return ShrinkOutcome::OnConstraint;
+            changed = true;
+            break;
+          }
+      }
+    }
+    if (!changed)
+      break;
+  }
+  // Compact the cavity list.
+  std::size_t kept = 0;
+  for (TetId c : ws.cavity)
+    if (inCavity(c))
+      ws.cavity[kept++] = c;
+  ws.cavity.resize(kept);
+  return ShrinkOutcome::Ok;
+}
+
+// Fills ws.boundary from the (final) cavity.
+void collectBoundary(TetMesh& mesh, InsertionWorkspace& ws)
+{
+  ws.boundary.clear();
+  for (TetId c : ws.cavity)
+  {
+    const VertexId* tv = &mesh.tets[4 * static_cast<std::size_t>(c)];
+    for (int f = 0; f < 4; ++f)
+    {
+      const FaceRef n = mesh.neighbor(c, f);
+      const bool constrained = faceConstrained(mesh, c, f);
+      if (n != kNoNeighbor && (mesh.flags[faceTet(n)] & kInCavity) && !constrained)
+        continue;
+      ws.boundary.push_back(
+        { { tv[kFaceVertices[f][0]], tv[kFaceVertices[f][1]], tv[kFaceVertices[f][2]] },
+          n,
+          constrained });
+    }
+  }
+}
+
+// Grows the conflict region from `start`. In fast mode the boundary is recorded on the fly.
+template<bool Checked>
+void growCavity(TetMesh& mesh, VertexId v, TetId start, InsertionWorkspace& ws)
+{
+  const double* coords = mesh.coords.data();
+  std::uint8_t* flags = mesh.flags.data();
+  const FaceRef* neighbors = mesh.neighbors.data();
+  const VertexId* tets = mesh.tets.data();
+  ws.cavity.clear();
+  ws.rejected.clear();
+  ws.boundary.clear();
+  flags[start] |= kInCavity;
+  ws.cavity.push_back(start);
+  for (std::size_t i = 0; i < ws.cavity.size(); ++i)
+  {
+    const TetId c = ws.cavity[i];
+    for (int f = 0; f < 4; ++f)
+    {
+      const FaceRef n = neighbors[4 * static_cast<std::size_t>(c) + f];
+      bool isBoundary = true;
+      bool constrained = (flags[c] >> f) & 1u;
+      if (n != kNoNeighbor)
+      {
+        const TetId u = faceTet(n);
+        constrained = constrained || ((flags[u] >> faceIndex(n)) & 1u);
+        if (flags[u] & kInCavity)
+          isBoundary = constrained; // internal unless a constraint separates them
+        else if (!constrained && !(flags[u] & kRejected))
+        {
+          const VertexId* uv = tets + 4 * static_cast<std::size_t>(u);
+          if (predicates::insphereSoSFiltered(coords, uv[0], uv[1], uv[2], uv[3], v) > 0)
+          {
+            flags[u] |= kInCavity;
+            ws.cavity.push_back(u);
+            isBoundary = false;
+          }
+          else
+          {
+            flags[u] |= kRejected;
+            ws.rejected.push_back(u);
+          }
+        }
+      }
+      if (!Checked && isBoundary)
+      {
+        const VertexId* tv = tets + 4 * static_cast<std::size_t>(c);
+        ws.boundary.push_back(
+          { { tv[kFaceVertices[f][0]], tv[kFaceVertices[f][1]], tv[kFaceVertices[f][2]] },
+            n,
+            constrained });
+      }
+    }
+  }
+}
+
+inline std::size_t edgeHash(VertexId a, VertexId b, std::size_t mask)
+{
+  std::uint64_t h = static_cast<std::uint32_t>(a) * 0x9E3779B97F4A7C15ULL ^
+    static_cast<std::uint32_t>(b) * 0xC2B2AE3D27D4EB4FULL;
+  return static_cast<std::size_t>(h ^ (h >> 29)) & mask;
+}
+
+// Replaces the cavity by the cone from v over ws.boundary. Returns one of the new tets.
+TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
+{
+  const std::size_t faceCount = ws.boundary.size();
+  // Edge table: at most 3*faceCount directed edges live at once; keep load <= 1/2.
+  if (ws.edgeTable.size() < 6 * faceCount)
+  {
+    std::size_t size = ws.edgeTable.size();
+    while (size < 6 * faceCount)
+      size *= 2;
+    ws.edgeTable.assign(size, InsertionWorkspace::EdgeSlot{ -1, -1, 0 });
+  }
+  const std::size_t mask = ws.edgeTable.size() - 1;
+  ws.usedSlots.clear();
+
+  // Face of the new tet (a,b,c,v) that contains edge (from,to) of the boundary triangle.
+  constexpr int kEdgeFace[3] = { 2, 0, 1 }; // edges ab, bc, ca
+  TetId lastTet = -1;
+  std::size_t reused = 0;
+  for (std::size_t i = 0; i < faceCount; ++i)
+  {
+    const InsertionWorkspace::BoundaryFace& bf = ws.boundary[i];
+    TetId t;
+    if (reused < ws.cavity.size())
+    {
+      t = ws.cavity[reused++];
+      const std::size_t base = 4 * static_cast<std::size_t>(t);
+      mesh.tets[base] = bf.v[0];
+      mesh.tets[base + 1] = bf.v[1];
+      mesh.tets[base + 2] = bf.v[2];
+      mesh.tets[base + 3] = v;
+      mesh.flags[t] = 0;
+    }
+    else
+      t = mesh.addTet(bf.v[0], bf.v[1], bf.v[2], v);
+    const std::size_t base = 4 * static_cast<std::size_t>(t);
+    mesh.neighbors[base + 3] = bf.outside;
+    if (bf.outside != kNoNeighbor)
+      mesh.neighbors[static_cast<std::size_t>(bf.outside)] = makeFaceRef(t, 3);
+    if (bf.constrained)
+      mesh.flags[t] = static_cast<std::uint8_t>(kConstrainedFace0 << 3);
+    for (int e = 0; e < 3; ++e)
+    {
+      const VertexId from = bf.v[e], to = bf.v[(e + 1) % 3];
+      const FaceRef mine = makeFaceRef(t, kEdgeFace[e]);
+      // The neighbouring cone tet holds the same edge in the opposite direction.
+      std::size_t slot = edgeHash(to, from, mask);
+      bool glued = false;
+      while (ws.edgeTable[slot].from != -1)
+      {
+        InsertionWorkspace::EdgeSlot& s = ws.edgeTable[slot];
+        if (s.from == to && s.to == from)
+        {
+          mesh.neighbors[base + kEdgeFace[e]] = s.face;
+          mesh.neighbors[static_cast<std::size_t>(s.face)] = mine;
+          s.from = -2; // tombstone: keeps probe chains intact
+          s.to = -2;
+          glued = true;
+          break;
+        }
+        slot = (slot + 1) & mask;
+      }
+      if (glued)
+        continue;
+      slot = edgeHash(from, to, mask);
+      while (ws.edgeTable[slot].from >= 0)
+        slot = (slot + 1) & mask;
+      if (ws.edgeTable[slot].from == -1)
+        ws.usedSlots.push_back(static_cast<int>(slot));
+      ws.edgeTable[slot] = { from, to, mine };
+    }
+    lastTet = t;
+  }
+  for (int s : ws.usedSlots)
+    ws.edgeTable[static_cast<std::size_t>(s)] = { -1, -1, 0 };
+  // Cavity slots not reused (only possible in degenerate checked-mode cavities).
+  for (std::size_t i = reused; i < ws.cavity.size(); ++i)
+  {
+    mesh.flags[ws.cavity[i]] = 0;
+    mesh.deleteTet(ws.cavity[i]);
+  }
+  return lastTet;
+}
+
+template<bool Checked>
+InsertResult insertImpl(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspace& ws)
+{
+  const double* p = mesh.point(v);
+  if (hint < 0 || hint >= mesh.tetCapacity() || mesh.isDeleted(hint))
+  {
+    hint = -1;
+    for (TetId t = mesh.tetCapacity() - 1; t >= 0 && hint < 0; --t)
+      if (!mesh.isDeleted(t))
+        hint = t;
+    if (hint < 0)
+      return { InsertStatus::OutsideMesh, -1, -1 };
+  }
+  const TetId t = walk(mesh, p, hint, ws);
+  if (t < 0)
+    return { InsertStatus::OutsideMesh, -1, -1 };
+  for (int k = 0; k < 4; ++k)
+  {
+    const VertexId w = mesh.vertex(t, k);
+    const double* q = mesh.point(w);
+    if (q[0] == p[0] && q[1] == p[1] && q[2] == p[2])
+      return { InsertStatus::Duplicate, t, w };
+  }
+  if (Checked)
+  {
+    const double* coords = mesh.coords.data();
+    for (int f = 0; f < 4; ++f)
+      if (faceConstrained(mesh, t, f) && faceOrient(mesh, coords, t, f, p) == 0)
+        return { InsertStatus::OnConstraint, t, -1 };
+  }
+  growCavity<Checked>(mesh, v, t, ws);
+  if (Checked)
+  {
+    if (shrinkToStar(mesh, p, t, ws) == ShrinkOutcome::OnConstraint)
+    {
+      clearMarks(mesh, ws);
+      return { InsertStatus::OnConstraint, t, -1 };
+    }
+    collectBoundary(mesh, ws);
+  }
+  for (TetId r : ws.rejected)
+    mesh.flags[r] = static_cast<std::uint8_t>(mesh.flags[r] & ~(kInCavity | kRejected));
+  const TetId created = fillCavity(mesh, v, ws);
+  return { InsertStatus::Inserted, created, -1 };
+}
+
+// Glues the faces of a handful of tets by brute-force matching of their vertex triples.
+void glueByMatching(TetMesh& mesh, const TetId* tets, int count)
+{
+  for (int i = 0; i < count; ++i)
+    for (int f = 0; f < 4; ++f)
+    {
+      VertexId a[3];
+      for (int k = 0; k < 3; ++k)
+        a[k] = mesh.vertex(tets[i], kFaceVertices[f][k]);
+      std::sort(a, a + 3);
+      for (int j = 0; j < count; ++j)
+        for (int g = 0; g < 4 && j != i; ++g)
+        {
+          VertexId b[3];
+          for (int k = 0; k < 3; ++k)
+            b[k] = mesh.vertex(tets[j], kFaceVertices[g][k]);
+          std::sort(b, b + 3);
+          if (std::equal(a, a + 3, b))
+            mesh.glue(tets[i], f, tets[j], g);
+        }
+    }
+}
+
+} // namespace
+
+InsertResult insertVertex(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspace& workspace)
+{
+  return insertImpl<true>(mesh, v, hint, workspace);
+}
+
+TetId locatePoint(const TetMesh& mesh, const double* p, TetId hint)
+{
+  InsertionWorkspace ws;
+  if (hint < 0 || hint >= mesh.tetCapacity() || mesh.isDeleted(hint))
+    return exhaustiveLocate(mesh, p);
+  return walk(mesh, p, hint, ws);
+}
+
+DelaunayResult buildDelaunay(TetMesh& mesh, const DelaunayOptions& options)
+{
+  DelaunayResult result;
+  const VertexId n = mesh.vertexCount();
+  mesh.tets.clear();
+  mesh.neighbors.clear();
+  mesh.flags.clear();
+  mesh.freeTets.clear();
+
+  // Bounding box, enlarged by boxEnlargement diagonals on every side.
+  double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
+  for (VertexId v = 0; v < n; ++v)
+    for (int k = 0; k < 3; ++k)
+    {
+      const double c = mesh.point(v)[k];
+      if (!std::isfinite(c))
+      {
+        result.error = "vertex " + std::to_string(v) + " has a non-finite coordinate";
+        return result;
+      }
+      lo[k] = v == 0 ? c : std::min(lo[k], c);
+      hi[k] = v == 0 ? c : std::max(hi[k], c);
+    }
+  double diagonal = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) +
+    (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  if (diagonal == 0)
+    diagonal = std::max({ 1.0, std::abs(lo[0]), std::abs(lo[1]), std::abs(lo[2]) });
+  const double margin = std::max(options.boxEnlargement, 0.01) * diagonal;
+
+  // Reserve for the expected ~6.5 tets per point so the arrays never reallocate (and never
+  // transiently double the memory) during insertion.
+  const std::size_t expectedTets = static_cast<std::size_t>(n) * 13 / 2 + 64;
+  mesh.coords.reserve(3 * (static_cast<std::size_t>(n) + 8));
+  mesh.tets.reserve(4 * expectedTets);
+  mesh.neighbors.reserve(4 * expectedTets);
+  mesh.flags.reserve(expectedTets);
+
+  result.firstBoxVertex = n;
+  for (int corner = 0; corner < 8; ++corner)
+    mesh.addVertex((corner & 1) ? hi[0] + margin : lo[0] - margin,
+      (corner & 2) ? hi[1] + margin : lo[1] - margin,
+      (corner & 4) ? hi[2] + margin : lo[2] - margin);
+
+  // Five tets: four corner tets cut off corners 0, 3, 5, 6, and the central tet (1,2,4,7).
+  const int kBoxTets[5][4] = {
+    { 0, 1, 2, 4 }, { 3, 1, 2, 7 }, { 5, 1, 4, 7 }, { 6, 2, 4, 7 }, { 1, 2, 4, 7 }
+  };
+  TetId box[5];
+  for (int i = 0; i < 5; ++i)
+  {
+    VertexId v[4];
+    for (int k = 0; k < 4; ++k)
+      v[k] = n + kBoxTets[i][k];
+    if (predicates::orient3d(
+          mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]), mesh.point(v[3])) < 0)
+      std::swap(v[0], v[1]);
+    box[i] = mesh.addTet(v[0], v[1], v[2], v[3]);
+  }
+  glueByMatching(mesh, box, 5);
+
+  const std::vector<VertexId> order = brioOrder(mesh.coords.data(), n);
+  InsertionWorkspace ws;
+  TetId hint = box[4];
+  for (VertexId v : order)
+  {
+    const InsertResult r = insertImpl<false>(mesh, v, hint, ws);
+    if (r.status == InsertStatus::Inserted)
+      hint = r.tet;
+    else if (r.status == InsertStatus::Duplicate)
+    {
+      result.duplicates.push_back(v);
+      result.duplicateOf.push_back(r.existing);
+      hint = r.tet;
+    }
+    else
+    {
+      result.error = "vertex " + std::to_string(v) + " could not be inserted";
+      return result;
+    }
+  }
+
+  if (options.validate)
+  {
+    const std::string msg = validateDelaunayMesh(mesh, n + 8, result.duplicates);
+    if (!msg.empty())
+    {
+      result.error = "Delaunay validation failed: " + msg;
+      return result;
+    }
+  }
+  result.ok = true;
+  return result;
+}
+
+} // namespace tetmesher

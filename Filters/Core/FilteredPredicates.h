@@ -1,0 +1,136 @@
+// Inline floating-point filters for the exact predicates of Predicates.h, for hot loops.
+//
+// Each function evaluates the determinant in double precision and compares it with a
+// proven bound on the rounding error (Shewchuk 1997, the "A" bounds: the determinant is
+// evaluated from coordinate differences, and the bound is a constant times the permanent,
+// i.e. the same expression with every term replaced by its absolute value). When the
+// magnitude of the determinant exceeds the bound, its sign is certainly right; otherwise
+// the exact expansion-arithmetic version decides. No epsilon ever decides a sign.
+#pragma once
+
+#include "TetMesh.h"
+
+namespace tetmesher
+{
+namespace predicates
+{
+
+// Exact (slow-path) evaluations; defined in Predicates.cxx.
+int orient3dExact(const double* a, const double* b, const double* c, const double* d);
+int insphereExact(const double* a,
+  const double* b,
+  const double* c,
+  const double* d,
+  const double* e);
+int orient2dExact(double ax, double ay, double bx, double by, double cx, double cy);
+// Symbolic-perturbation tie break, called only when insphere is exactly zero.
+int insphereTieBreak(const double* const points[5], const VertexId ids[5]);
+
+namespace bounds
+{
+constexpr double kEpsilon = 1.1102230246251565e-16; // 2^-53, half an ulp of 1
+constexpr double kOrient2d = (3.0 + 16.0 * kEpsilon) * kEpsilon;
+constexpr double kOrient3d = (7.0 + 56.0 * kEpsilon) * kEpsilon;
+constexpr double kInsphere = (16.0 + 224.0 * kEpsilon) * kEpsilon;
+}
+
+inline double absValue(double x)
+{
+  return x < 0 ? -x : x;
+}
+
+inline int orient3dFiltered(const double* a, const double* b, const double* c, const double* d)
+{
+  const double adx = a[0] - d[0], bdx = b[0] - d[0], cdx = c[0] - d[0];
+  const double ady = a[1] - d[1], bdy = b[1] - d[1], cdy = c[1] - d[1];
+  const double adz = a[2] - d[2], bdz = b[2] - d[2], cdz = c[2] - d[2];
+  const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
+  const double cdxady = cdx * ady, adxcdy = adx * cdy;
+  const double adxbdy = adx * bdy, bdxady = bdx * ady;
+  const double det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+  const double permanent = (absValue(bdxcdy) + absValue(cdxbdy)) * absValue(adz) +
+    (absValue(cdxady) + absValue(adxcdy)) * absValue(bdz) +
+    (absValue(adxbdy) + absValue(bdxady)) * absValue(cdz);
+  const double bound = bounds::kOrient3d * permanent;
+  if (det > bound)
+    return 1;
+  if (-det > bound)
+    return -1;
+  return orient3dExact(a, b, c, d);
+}
+
+inline int insphereFiltered(const double* a,
+  const double* b,
+  const double* c,
+  const double* d,
+  const double* e)
+{
+  const double aex = a[0] - e[0], bex = b[0] - e[0], cex = c[0] - e[0], dex = d[0] - e[0];
+  const double aey = a[1] - e[1], bey = b[1] - e[1], cey = c[1] - e[1], dey = d[1] - e[1];
+  const double aez = a[2] - e[2], bez = b[2] - e[2], cez = c[2] - e[2], dez = d[2] - e[2];
+
+  const double aexbey = aex * bey, bexaey = bex * aey;
+  const double bexcey = bex * cey, cexbey = cex * bey;
+  const double cexdey = cex * dey, dexcey = dex * cey;
+  const double dexaey = dex * aey, aexdey = aex * dey;
+  const double aexcey = aex * cey, cexaey = cex * aey;
+  const double bexdey = bex * dey, dexbey = dex * bey;
+  const double ab = aexbey - bexaey, bc = bexcey - cexbey, cd = cexdey - dexcey;
+  const double da = dexaey - aexdey, ac = aexcey - cexaey, bd = bexdey - dexbey;
+
+  const double abc = aez * bc - bez * ac + cez * ab;
+  const double bcd = bez * cd - cez * bd + dez * bc;
+  const double cda = cez * da + dez * ac + aez * cd;
+  const double dab = dez * ab + aez * bd + bez * da;
+
+  const double alift = aex * aex + aey * aey + aez * aez;
+  const double blift = bex * bex + bey * bey + bez * bez;
+  const double clift = cex * cex + cey * cey + cez * cez;
+  const double dlift = dex * dex + dey * dey + dez * dez;
+
+  const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+
+  const double aezp = absValue(aez), bezp = absValue(bez), cezp = absValue(cez),
+               dezp = absValue(dez);
+  const double aexbeyp = absValue(aexbey), bexaeyp = absValue(bexaey);
+  const double bexceyp = absValue(bexcey), cexbeyp = absValue(cexbey);
+  const double cexdeyp = absValue(cexdey), dexceyp = absValue(dexcey);
+  const double dexaeyp = absValue(dexaey), aexdeyp = absValue(aexdey);
+  const double aexceyp = absValue(aexcey), cexaeyp = absValue(cexaey);
+  const double bexdeyp = absValue(bexdey), dexbeyp = absValue(dexbey);
+  const double permanent =
+    ((cexdeyp + dexceyp) * bezp + (dexbeyp + bexdeyp) * cezp + (bexceyp + cexbeyp) * dezp) * alift +
+    ((dexaeyp + aexdeyp) * cezp + (aexceyp + cexaeyp) * dezp + (cexdeyp + dexceyp) * aezp) * blift +
+    ((aexbeyp + bexaeyp) * dezp + (bexdeyp + dexbeyp) * aezp + (dexaeyp + aexdeyp) * bezp) * clift +
+    ((bexceyp + cexbeyp) * aezp + (cexaeyp + aexceyp) * bezp + (aexbeyp + bexaeyp) * cezp) * dlift;
+  const double bound = bounds::kInsphere * permanent;
+  if (det > bound)
+    return 1;
+  if (-det > bound)
+    return -1;
+  return insphereExact(a, b, c, d, e);
+}
+
+// insphereSoS on raw coordinates (coords = mesh.coords.data()), for hot loops.
+inline int insphereSoSFiltered(const double* coords,
+  VertexId a,
+  VertexId b,
+  VertexId c,
+  VertexId d,
+  VertexId e)
+{
+  const double* pa = coords + 3 * static_cast<std::size_t>(a);
+  const double* pb = coords + 3 * static_cast<std::size_t>(b);
+  const double* pc = coords + 3 * static_cast<std::size_t>(c);
+  const double* pd = coords + 3 * static_cast<std::size_t>(d);
+  const double* pe = coords + 3 * static_cast<std::size_t>(e);
+  const int s = insphereFiltered(pa, pb, pc, pd, pe);
+  if (s != 0)
+    return s;
+  const double* const points[5] = { pa, pb, pc, pd, pe };
+  const VertexId ids[5] = { a, b, c, d, e };
+  return insphereTieBreak(points, ids);
+}
+
+} // namespace predicates
+} // namespace tetmesher

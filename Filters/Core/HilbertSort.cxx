@@ -1,0 +1,155 @@
+// Hilbert keys by Skilling's transpose algorithm (J. Skilling, "Programming the Hilbert
+// curve", AIP Conf. Proc. 707, 2004): undo the per-level rotations/reflections, Gray-code
+// the result, then interleave the bits of the three coordinates from the most significant.
+#include "HilbertSort.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace tetmesher
+{
+
+std::uint64_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z, int bits)
+{
+  std::uint32_t axes[3] = { x, y, z };
+  const std::uint32_t top = 1u << (bits - 1);
+  // Inverse undo of the curve's rotations, level by level from the coarsest.
+  for (std::uint32_t q = top; q > 1; q >>= 1)
+  {
+    const std::uint32_t lowerMask = q - 1;
+    for (int i = 0; i < 3; ++i)
+    {
+      if (axes[i] & q)
+        axes[0] ^= lowerMask; // reflect
+      else
+      {
+        const std::uint32_t t = (axes[0] ^ axes[i]) & lowerMask; // swap low bits of 0 and i
+        axes[0] ^= t;
+        axes[i] ^= t;
+      }
+    }
+  }
+  // Gray encoding.
+  for (int i = 1; i < 3; ++i)
+    axes[i] ^= axes[i - 1];
+  std::uint32_t t = 0;
+  for (std::uint32_t q = top; q > 1; q >>= 1)
+    if (axes[2] & q)
+      t ^= q - 1;
+  for (int i = 0; i < 3; ++i)
+    axes[i] ^= t;
+  // Interleave: bit b of axis 0 is the most significant of the three at level b.
+  std::uint64_t key = 0;
+  for (int b = bits - 1; b >= 0; --b)
+    for (int i = 0; i < 3; ++i)
+      key = (key << 1) | ((axes[i] >> b) & 1u);
+  return key;
+}
+
+namespace
+{
+
+struct Box
+{
+  double lo[3], scale;
+};
+
+Box boundingGrid(const double* coords, const VertexId* first, const VertexId* last, int bits)
+{
+  Box box;
+  double hi[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    box.lo[k] = std::numeric_limits<double>::max();
+    hi[k] = std::numeric_limits<double>::lowest();
+  }
+  for (const VertexId* v = first; v != last; ++v)
+    for (int k = 0; k < 3; ++k)
+    {
+      const double c = coords[3 * static_cast<std::size_t>(*v) + k];
+      box.lo[k] = std::min(box.lo[k], c);
+      hi[k] = std::max(hi[k], c);
+    }
+  double extent = 0;
+  for (int k = 0; k < 3; ++k)
+    extent = std::max(extent, hi[k] - box.lo[k]);
+  // One scale for the three axes keeps the curve's cells cubic.
+  const double cells = std::ldexp(1.0, bits) - 1.0;
+  box.scale = extent > 0 ? cells / extent : 0.0;
+  return box;
+}
+
+// SplitMix64: a tiny, well-mixed generator whose output is the same on every platform
+// (std::shuffle's algorithm is implementation-defined, so we shuffle ourselves).
+struct SplitMix64
+{
+  std::uint64_t state;
+  std::uint64_t next()
+  {
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  }
+};
+
+} // namespace
+
+void hilbertSort(const double* coords, VertexId* first, VertexId* last)
+{
+  constexpr int kBits = 21;
+  if (last - first < 2)
+    return;
+  const Box box = boundingGrid(coords, first, last, kBits);
+  struct Keyed
+  {
+    std::uint64_t key;
+    VertexId id;
+  };
+  std::vector<Keyed> keyed(static_cast<std::size_t>(last - first));
+  for (std::size_t i = 0; i < keyed.size(); ++i)
+  {
+    const VertexId v = first[i];
+    std::uint32_t g[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      const double c = (coords[3 * static_cast<std::size_t>(v) + k] - box.lo[k]) * box.scale;
+      g[k] = static_cast<std::uint32_t>(std::min(c, std::ldexp(1.0, kBits) - 1.0));
+    }
+    keyed[i] = { hilbertIndex(g[0], g[1], g[2], kBits), v };
+  }
+  std::sort(keyed.begin(),
+    keyed.end(),
+    [](const Keyed& a, const Keyed& b)
+    { return a.key < b.key || (a.key == b.key && a.id < b.id); });
+  for (std::size_t i = 0; i < keyed.size(); ++i)
+    first[i] = keyed[i].id;
+}
+
+std::vector<VertexId> brioOrder(const double* coords, VertexId n, std::uint64_t seed)
+{
+  std::vector<VertexId> order(static_cast<std::size_t>(n));
+  for (VertexId i = 0; i < n; ++i)
+    order[static_cast<std::size_t>(i)] = i;
+  SplitMix64 rng{ seed };
+  for (std::size_t i = order.size(); i > 1; --i)
+  {
+    const std::size_t j = static_cast<std::size_t>(rng.next() % i);
+    std::swap(order[i - 1], order[j]);
+  }
+  // Rounds from the end: the last round holds 7/8 of the remaining points, and so on, until
+  // a small first round (Multiscale sorting, as CGAL's spatial_sort does).
+  constexpr double kRatio = 0.125;
+  constexpr std::size_t kMinRound = 64;
+  std::size_t end = order.size();
+  while (end > 0)
+  {
+    std::size_t begin = end <= kMinRound ? 0 : static_cast<std::size_t>(end * kRatio);
+    hilbertSort(coords, order.data() + begin, order.data() + end);
+    end = begin;
+  }
+  return order;
+}
+
+} // namespace tetmesher
