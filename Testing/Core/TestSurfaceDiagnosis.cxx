@@ -1,0 +1,774 @@
+// Input diagnosis: one small hand-built surface per defect with its exact expected diagnosis,
+// clean surfaces (single and multi-material) that must pass, the corpus files in Data/, and a
+// timing on a large sphere.
+#include "SurfaceDiagnosis.h"
+#include "TriangleIntersection.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace tetmesher;
+
+namespace
+{
+
+struct Surface
+{
+  std::vector<double> pts;
+  std::vector<std::int32_t> tris;
+
+  std::int32_t addPoint(double x, double y, double z)
+  {
+    pts.insert(pts.end(), { x, y, z });
+    return static_cast<std::int32_t>(pts.size() / 3 - 1);
+  }
+  std::int32_t addTri(std::int32_t a, std::int32_t b, std::int32_t c)
+  {
+    tris.insert(tris.end(), { a, b, c });
+    return static_cast<std::int32_t>(tris.size() / 3 - 1);
+  }
+  std::int32_t pointCount() const { return static_cast<std::int32_t>(pts.size() / 3); }
+  std::int32_t triCount() const { return static_cast<std::int32_t>(tris.size() / 3); }
+  SurfaceDiagnosis diagnose() const
+  {
+    return diagnoseSurface(pts.data(), pointCount(), tris.data(), triCount());
+  }
+  double volume() const
+  {
+    double v = 0;
+    for (std::size_t t = 0; t < tris.size(); t += 3)
+    {
+      const double* a = &pts[3 * tris[t]];
+      const double* b = &pts[3 * tris[t + 1]];
+      const double* c = &pts[3 * tris[t + 2]];
+      v += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+             a[2] * (b[0] * c[1] - b[1] * c[0])) /
+        6;
+    }
+    return v;
+  }
+};
+
+// Unit cube, point id = x + 2y + 4z, 12 outward triangles (ids in comments).
+Surface cube()
+{
+  Surface s;
+  for (int i = 0; i < 8; ++i)
+    s.addPoint(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+  s.addTri(0, 4, 6); // 0  x=0
+  s.addTri(0, 6, 2); // 1
+  s.addTri(1, 3, 7); // 2  x=1
+  s.addTri(1, 7, 5); // 3
+  s.addTri(0, 1, 5); // 4  y=0
+  s.addTri(0, 5, 4); // 5
+  s.addTri(2, 6, 7); // 6  y=1
+  s.addTri(2, 7, 3); // 7
+  s.addTri(0, 2, 3); // 8  z=0
+  s.addTri(0, 3, 1); // 9
+  s.addTri(4, 5, 7); // 10 z=1
+  s.addTri(4, 7, 6); // 11
+  return s;
+}
+
+Surface icosphere(int levels)
+{
+  Surface s;
+  const double t = (1 + std::sqrt(5.0)) / 2;
+  const double v[12][3] = { { -1, t, 0 },
+    { 1, t, 0 },
+    { -1, -t, 0 },
+    { 1, -t, 0 },
+    { 0, -1, t },
+    { 0, 1, t },
+    { 0, -1, -t },
+    { 0, 1, -t },
+    { t, 0, -1 },
+    { t, 0, 1 },
+    { -t, 0, -1 },
+    { -t, 0, 1 } };
+  for (const auto& p : v)
+  {
+    const double n = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    s.addPoint(p[0] / n, p[1] / n, p[2] / n);
+  }
+  std::vector<std::int32_t> f = { 0,
+    11,
+    5,
+    0,
+    5,
+    1,
+    0,
+    1,
+    7,
+    0,
+    7,
+    10,
+    0,
+    10,
+    11,
+    1,
+    5,
+    9,
+    5,
+    11,
+    4,
+    11,
+    10,
+    2,
+    10,
+    7,
+    6,
+    7,
+    1,
+    8,
+    3,
+    9,
+    4,
+    3,
+    4,
+    2,
+    3,
+    2,
+    6,
+    3,
+    6,
+    8,
+    3,
+    8,
+    9,
+    4,
+    9,
+    5,
+    2,
+    4,
+    11,
+    6,
+    2,
+    10,
+    8,
+    6,
+    7,
+    9,
+    8,
+    1 };
+  for (int l = 0; l < levels; ++l)
+  {
+    std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t> mid;
+    auto midpoint = [&](std::int32_t a, std::int32_t b)
+    {
+      auto key = std::make_pair(std::min(a, b), std::max(a, b));
+      auto it = mid.find(key);
+      if (it != mid.end())
+        return it->second;
+      double m[3];
+      for (int k = 0; k < 3; ++k)
+        m[k] = (s.pts[3 * a + k] + s.pts[3 * b + k]) / 2;
+      const double n = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+      const std::int32_t id = s.addPoint(m[0] / n, m[1] / n, m[2] / n);
+      mid[key] = id;
+      return id;
+    };
+    std::vector<std::int32_t> g;
+    for (std::size_t i = 0; i < f.size(); i += 3)
+    {
+      const std::int32_t a = f[i], b = f[i + 1], c = f[i + 2];
+      const std::int32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+      g.insert(g.end(), { a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca });
+    }
+    f.swap(g);
+  }
+  s.tris = f;
+  return s;
+}
+
+// Multi-material voxel surface: unit cubes at integer positions; a face between two cubes of
+// the list appears once (oriented out of the earlier cube), every other face once, outward.
+Surface voxels(const std::vector<std::array<int, 3>>& cubes)
+{
+  Surface s;
+  std::map<std::array<int, 3>, std::int32_t> ids;
+  auto id = [&](int x, int y, int z)
+  {
+    const std::array<int, 3> key = { x, y, z };
+    auto it = ids.find(key);
+    if (it != ids.end())
+      return it->second;
+    return ids[key] = s.addPoint(x, y, z);
+  };
+  for (std::size_t c = 0; c < cubes.size(); ++c)
+  {
+    const auto& p = cubes[c];
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      for (int dir = -1; dir <= 1; dir += 2)
+      {
+        std::array<int, 3> q = p;
+        q[axis] += dir;
+        const auto other = std::find(cubes.begin(), cubes.end(), q);
+        if (other != cubes.end() && static_cast<std::size_t>(other - cubes.begin()) < c)
+          continue;
+        // Quad on the face, counterclockwise seen from outside.
+        const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+        std::array<int, 3> corner[4];
+        const int du[4] = { 0, 1, 1, 0 }, dv[4] = { 0, 0, 1, 1 };
+        for (int k = 0; k < 4; ++k)
+        {
+          corner[k] = p;
+          corner[k][axis] += dir > 0 ? 1 : 0;
+          corner[k][a1] += dir > 0 ? du[k] : dv[k];
+          corner[k][a2] += dir > 0 ? dv[k] : du[k];
+        }
+        std::int32_t v[4];
+        for (int k = 0; k < 4; ++k)
+          v[k] = id(corner[k][0], corner[k][1], corner[k][2]);
+        s.addTri(v[0], v[1], v[2]);
+        s.addTri(v[0], v[2], v[3]);
+      }
+    }
+  }
+  return s;
+}
+
+void expectRecord(const DefectRecord& r,
+  SurfaceDefect kind,
+  std::vector<std::int32_t> points,
+  std::vector<std::int32_t> tris)
+{
+  EXPECT_EQ(static_cast<int>(r.kind), static_cast<int>(kind)) << defectLabel(kind);
+  EXPECT_EQ(r.pointIds, points) << defectLabel(kind);
+  EXPECT_EQ(r.triangleIds, tris) << defectLabel(kind);
+}
+
+// --- Minimal readers for the corpus files (.off, .stl). ---
+bool readOff(const std::string& path, Surface& s)
+{
+  std::ifstream in(path);
+  if (!in)
+    return false;
+  std::vector<std::string> tokens;
+  std::string line;
+  while (std::getline(in, line))
+  {
+    const auto hash = line.find('#');
+    if (hash != std::string::npos)
+      line.resize(hash);
+    std::istringstream ls(line);
+    std::string tok;
+    while (ls >> tok)
+      tokens.push_back(tok);
+  }
+  std::size_t i = 0;
+  if (i < tokens.size() && tokens[i] == "OFF")
+    ++i;
+  if (tokens.size() < i + 3)
+    return false;
+  const long nv = std::stol(tokens[i]), nf = std::stol(tokens[i + 1]);
+  i += 3;
+  for (long v = 0; v < nv; ++v, i += 3)
+    s.addPoint(std::stod(tokens[i]), std::stod(tokens[i + 1]), std::stod(tokens[i + 2]));
+  for (long f = 0; f < nf; ++f)
+  {
+    const long n = std::stol(tokens[i++]);
+    std::vector<std::int32_t> ids;
+    for (long k = 0; k < n; ++k)
+      ids.push_back(static_cast<std::int32_t>(std::stol(tokens[i++])));
+    for (long k = 1; k + 1 < n; ++k)
+      s.addTri(ids[0], ids[k], ids[k + 1]);
+  }
+  return true;
+}
+
+bool readStl(const std::string& path, Surface& s)
+{
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    return false;
+  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::map<std::array<double, 3>, std::int32_t> ids;
+  auto point = [&](double x, double y, double z)
+  {
+    const std::array<double, 3> key = { x, y, z };
+    auto it = ids.find(key);
+    if (it != ids.end())
+      return it->second;
+    const std::int32_t id = s.addPoint(x, y, z);
+    ids[key] = id;
+    return id;
+  };
+  std::uint32_t n = 0;
+  if (data.size() >= 84)
+    std::memcpy(&n, data.data() + 80, 4);
+  if (data.size() >= 84 && data.size() == 84 + 50 * static_cast<std::size_t>(n))
+  {
+    for (std::uint32_t t = 0; t < n; ++t)
+    {
+      std::int32_t v[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        float c[3];
+        std::memcpy(c, data.data() + 84 + 50 * static_cast<std::size_t>(t) + 12 + 12 * k, 12);
+        v[k] = point(c[0], c[1], c[2]);
+      }
+      s.addTri(v[0], v[1], v[2]);
+    }
+    return true;
+  }
+  std::istringstream text(data);
+  std::string tok;
+  std::vector<std::int32_t> face;
+  while (text >> tok)
+  {
+    if (tok == "vertex")
+    {
+      double x, y, z;
+      text >> x >> y >> z;
+      face.push_back(point(x, y, z));
+    }
+    else if (tok == "endloop")
+    {
+      if (face.size() == 3)
+        s.addTri(face[0], face[1], face[2]);
+      face.clear();
+    }
+  }
+  return s.triCount() > 0;
+}
+
+bool readSurface(const std::string& path, Surface& s)
+{
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".off")
+    return readOff(path, s);
+  if (ext == ".stl")
+    return readStl(path, s);
+  return false;
+}
+
+} // namespace
+
+TEST(SurfaceDiagnosis, EmptyInput)
+{
+  const SurfaceDiagnosis d = diagnoseSurface(nullptr, 0, nullptr, 0);
+  ASSERT_EQ(d.defects.size(), 1u);
+  EXPECT_EQ(d.defects[0].kind, SurfaceDefect::Empty);
+  EXPECT_FALSE(d.ok());
+  const double p[3] = { 0, 0, 0 };
+  EXPECT_EQ(diagnoseSurface(p, 1, nullptr, 0).count(SurfaceDefect::Empty), 1);
+}
+
+TEST(SurfaceDiagnosis, CleanCube)
+{
+  const Surface s = cube();
+  EXPECT_DOUBLE_EQ(s.volume(), 1.0);
+  const SurfaceDiagnosis d = s.diagnose();
+  EXPECT_TRUE(d.ok()) << d.summary();
+  EXPECT_TRUE(d.defects.empty());
+  EXPECT_EQ(d.summary(), "no defects");
+}
+
+TEST(SurfaceDiagnosis, CleanIcosphere)
+{
+  const Surface s = icosphere(3);
+  EXPECT_GT(s.volume(), 4.0);
+  const SurfaceDiagnosis d = s.diagnose();
+  EXPECT_TRUE(d.defects.empty()) << d.summary();
+}
+
+TEST(SurfaceDiagnosis, TwoCubesSharingAFaceAreValidMultiMaterial)
+{
+  // Cube A = [0,1]^3, cube B = [1,2]x[0,1]^2; the face x=1 appears once (oriented out of A):
+  // its 4 boundary edges carry 3 triangles each.
+  Surface s = cube();
+  std::int32_t id[8];
+  for (int i = 0; i < 8; ++i)
+    id[i] = (i & 1) ? s.addPoint(2, (i >> 1) & 1, (i >> 2) & 1) : (i | 1);
+  // B's faces except x=1 (its x=0 side), with B's outward orientation.
+  const int faces[10][3] = { { 1, 3, 7 },
+    { 1, 7, 5 },
+    { 0, 1, 5 },
+    { 0, 5, 4 },
+    { 2, 6, 7 },
+    { 2, 7, 3 },
+    { 0, 2, 3 },
+    { 0, 3, 1 },
+    { 4, 5, 7 },
+    { 4, 7, 6 } };
+  for (const auto& f : faces)
+    s.addTri(id[f[0]], id[f[1]], id[f[2]]);
+  const SurfaceDiagnosis d = s.diagnose();
+  EXPECT_TRUE(d.defects.empty()) << d.summary();
+}
+
+TEST(SurfaceDiagnosis, VoxelMultiMaterialConfigurationsAreValid)
+{
+  const Surface one = voxels({ { 0, 0, 0 } });
+  EXPECT_DOUBLE_EQ(one.volume(), 1.0);
+  EXPECT_TRUE(one.diagnose().defects.empty()) << one.diagnose().summary();
+  const std::vector<std::vector<std::array<int, 3>>> cases = {
+    { { 0, 0, 0 }, { 1, 0, 0 } },                           // shared face
+    { { 0, 0, 0 }, { 1, 1, 0 } },                           // shared edge only
+    { { 0, 0, 0 }, { 1, 1, 1 } },                           // shared vertex only
+    { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 } },              // L: 4 triangles on an edge
+    { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 1, 1, 0 } }, // 2x2 block
+    { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 1, 1, 0 }, { 0, 0, 1 } }, // block + one on top
+    { { 0, 0, 0 }, { 2, 0, 0 }, { 1, 0, 0 } },                           // a row, middle last
+  };
+  for (const auto& c : cases)
+  {
+    const Surface s = voxels(c);
+    const SurfaceDiagnosis d = s.diagnose();
+    EXPECT_TRUE(d.defects.empty()) << c.size() << " cubes: " << d.summary();
+  }
+}
+
+TEST(SurfaceDiagnosis, VoxelWithMissingFaceIsOpen)
+{
+  // L of three cubes with the top face of the corner cube removed: 3 of its edges become open
+  // (the 4th, on the face shared with the middle cube, goes from 3 triangles to 2). The corner
+  // cube no longer bounds a region, so the 3 edges where its walls meet the middle cube's
+  // faces are reported as non-manifold too.
+  Surface s = voxels({ { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 } });
+  s.tris.resize(s.tris.size() - 6); // the last face of the last cube (+z of (1,1,0))
+  const SurfaceDiagnosis d = s.diagnose();
+  EXPECT_EQ(d.count(SurfaceDefect::OpenEdge), 3) << d.summary();
+  EXPECT_EQ(d.count(SurfaceDefect::NonManifoldEdge), 3) << d.summary();
+  EXPECT_EQ(d.defects.size(), 6u) << d.summary();
+  EXPECT_FALSE(d.ok());
+}
+
+TEST(SurfaceDiagnosis, SortAroundEdge)
+{
+  const double u[3] = { 0, 0, 0 }, v[3] = { 0, 0, 1 };
+  const double w0[3] = { 1, 0, 0 }, w1[3] = { 0, -1, 0.3 }, w2[3] = { -1, 0, 5 };
+  const double w3[3] = { 1, 1, 0 }, w4[3] = { 0, 1, -2 }, w5[3] = { 2, 0, 3 };
+  const double w6[3] = { 1, -1e-300, 0 };
+  const std::vector<const double*> w = { w0, w1, w2, w3, w4, w5, w6 };
+  // Counterclockwise about +z from angle 0: 0 (w0, w5), 45, 90, 180, 270, just below 360.
+  const std::vector<std::size_t> expected = { 0, 5, 3, 4, 2, 1, 6 };
+  EXPECT_EQ(sortAroundEdge(u, v, w), expected);
+  // Reversed axis: clockwise.
+  const std::vector<std::size_t> reversed = { 0, 5, 6, 1, 2, 4, 3 };
+  EXPECT_EQ(sortAroundEdge(v, u, w), reversed);
+}
+
+TEST(SurfaceDiagnosis, CubeSplitByInternalWallIsValid)
+{
+  // The diagonal section x=y (points 0,3,7,4) splits the cube into two prisms: its boundary
+  // edges carry 3 triangles, and each triangle separates two different regions.
+  Surface s = cube();
+  s.addTri(0, 3, 7);
+  s.addTri(0, 7, 4);
+  const SurfaceDiagnosis d = s.diagnose();
+  EXPECT_TRUE(d.defects.empty()) << d.summary();
+}
+
+TEST(SurfaceDiagnosis, InvalidPointId)
+{
+  Surface s = cube();
+  s.addTri(0, 1, 99);
+  const SurfaceDiagnosis d = s.diagnose();
+  ASSERT_EQ(d.defects.size(), 1u) << d.summary();
+  expectRecord(d.defects[0], SurfaceDefect::InvalidPointId, { 0, 1, 99 }, { 12 });
+}
+
+TEST(SurfaceDiagnosis, NonFiniteCoordinates)
+{
+  Surface s = cube();
+  s.pts[3 * 5] = std::numeric_limits<double>::quiet_NaN();
+  s.pts[3 * 6 + 2] = -std::numeric_limits<double>::infinity();
+  const SurfaceDiagnosis d = s.diagnose();
+  ASSERT_EQ(d.defects.size(), 2u) << d.summary();
+  expectRecord(d.defects[0], SurfaceDefect::NonFiniteCoordinate, { 5 }, {});
+  expectRecord(d.defects[1], SurfaceDefect::NonFiniteCoordinate, { 6 }, {});
+}
+
+TEST(SurfaceDiagnosis, DuplicatePointUnused)
+{
+  Surface s = cube();
+  s.addPoint(1, 1, 0); // same as point 3
+  const SurfaceDiagnosis d = s.diagnose();
+  ASSERT_EQ(d.defects.size(), 2u) << d.summary();
+  expectRecord(d.defects[0], SurfaceDefect::DuplicatePoint, { 3, 8 }, {});
+  expectRecord(d.defects[1], SurfaceDefect::UnusedPoint, { 8 }, {});
+  EXPECT_FALSE(d.ok());
+}
+
+TEST(SurfaceDiagnosis, UnusedPointIsOnlyAWarning)
+{
+  Surface s = cube();
+  s.addPoint(0.5, 0.5, 0.5);
+  const SurfaceDiagnosis d = s.diagnose();
+  ASSERT_EQ(d.defects.size(), 1u) << d.summary();
+  expectRecord(d.defects[0], SurfaceDefect::UnusedPoint, { 8 }, {});
+  EXPECT_TRUE(d.ok());
+}
+
+TEST(SurfaceDiagnosis, UnmergedPointsGiveOpenEdgesNotIntersections)
+{
+  // Triangle 9 (0,3,1) uses a copy of point 3: the coincident copies touch, but that is
+  // reported once, as coincident points (plus the open edges it causes).
+  Surface s = cube();
+  const std::int32_t copy = s.addPoint(1, 1, 0);
+  s.tris[3 * 9 + 1] = copy;
+  const SurfaceDiagnosis d = s.diagnose();
+  EXPECT_EQ(d.count(SurfaceDefect::DuplicatePoint), 1) << d.summary();
+  EXPECT_EQ(d.count(SurfaceDefect::OpenEdge), 4) << d.summary();
+  EXPECT_EQ(d.defects.size(), 5u) << d.summary();
+  EXPECT_EQ(d.count(SurfaceDefect::SelfIntersection), 0) << d.summary();
+}
+
+TEST(SurfaceDiagnosis, DegenerateRepeatedId)
+{
+  Surface s = cube();
+  s.addTri(0, 0, 1);
+  const SurfaceDiagnosis d = s.diagnose();
+  ASSERT_EQ(d.defects.size(), 1u) << d.summary();
+  expectRecord(d.defects[0], SurfaceDefect::DegenerateTriangle, { 0, 0, 1 }, { 12 });
+}
+
+TEST(SurfaceDiagnosis, DegenerateCollinearCap)
+{
+  // Point 8 at the middle of edge 0-1; triangle 4 split at it, and the zero-area triangle
+  // (0,1,8) closes the surface. Point 8 touches triangle 9 (which still has edge 0-1): the
+  // triangles on each side of it are T-junctions, i.e. genuine intersections.
+  Surface s = cube();
+  const std::int32_t m = s.addPoint(0.5, 0, 0);
+  s.tris[3 * 4 + 1] = m; // 4: (0,8,5)
+  const std::int32_t t12 = s.addTri(m, 1, 5);
+  const std::int32_t t13 = s.addTri(0, 1, m);
+  const SurfaceDiagnosis d = s.diagnose();
+  ASSERT_EQ(d.defects.size(), 3u) << d.summary();
+  expectRecord(d.defects[0], SurfaceDefect::DegenerateTriangle, { 0, 1, 8 }, { t13 });
+  expectRecord(d.defects[1], SurfaceDefect::SelfIntersection, { 0, 8, 5, 0, 3, 1 }, { 4, 9 });
+  expectRecord(d.defects[2], SurfaceDefect::SelfIntersection, { 0, 3, 1, 8, 1, 5 }, { 9, t12 });
+}
+
+TEST(SurfaceDiagnosis, DuplicateTriangle)
+{
+  Surface s = cube();
+  s.addTri(6, 4, 0); // triangle 0 reversed
+  s.addTri(4, 6, 0); // triangle 0, rotated
+  const SurfaceDiagnosis d = s.diagnose();
+  ASSERT_EQ(d.defects.size(), 1u) << d.summary();
+  expectRecord(d.defects[0], SurfaceDefect::DuplicateTriangle, { 0, 4, 6 }, { 0, 12, 13 });
+  EXPECT_EQ(d.summary(), "1 duplicated triangle (points 0-4-6; triangles 0=12=13)");
+}
+
+TEST(SurfaceDiagnosis, OpenEdges)
+{
+  Surface s = cube();
+  s.tris.resize(33); // drop triangle 11 (4,7,6)
+  const SurfaceDiagnosis d = s.diagnose();
+  ASSERT_EQ(d.defects.size(), 3u) << d.summary();
+  expectRecord(d.defects[0], SurfaceDefect::OpenEdge, { 4, 6 }, { 0 });
+  expectRecord(d.defects[1], SurfaceDefect::OpenEdge, { 4, 7 }, { 10 });
+  expectRecord(d.defects[2], SurfaceDefect::OpenEdge, { 6, 7 }, { 6 });
+  EXPECT_EQ(d.summary(), "3 open edges (points 4-6, 4-7, 6-7; triangles 0, 10, 6)");
+  EXPECT_EQ(d.summary(2), "3 open edges (points 4-6, 4-7, ...; triangles 0, 10, ...)");
+}
+
+TEST(SurfaceDiagnosis, NonManifoldFin)
+{
+  // A fin hanging off edge 0-1, outside the cube: 3 triangles on 0-1, but the fin has the
+  // same region on both sides.
+  Surface s = cube();
+  const std::int32_t tip = s.addPoint(0.5, -1, -1);
+  const std::int32_t fin = s.addTri(0, 1, tip);
+  const SurfaceDiagnosis d = s.diagnose();
+  ASSERT_EQ(d.defects.size(), 3u) << d.summary();
+  expectRecord(d.defects[0], SurfaceDefect::OpenEdge, { 0, 8 }, { fin });
+  expectRecord(d.defects[1], SurfaceDefect::OpenEdge, { 1, 8 }, { fin });
+  expectRecord(d.defects[2], SurfaceDefect::NonManifoldEdge, { 0, 1 }, { 4, 9, fin });
+}
+
+TEST(SurfaceDiagnosis, NonManifoldDanglingInternalWall)
+{
+  // Half of the diagonal wall x=y inside the cube, triangle (0,3,7) only: it does not split
+  // the cube, so it has the same region on both sides.
+  Surface s = cube();
+  s.addTri(0, 3, 7);
+  const SurfaceDiagnosis d = s.diagnose();
+  // Edges 0-3 and 3-7 carry 3 triangles; the wall's free edge 0-7 is open.
+  ASSERT_EQ(d.count(SurfaceDefect::OpenEdge), 1) << d.summary();
+  ASSERT_EQ(d.count(SurfaceDefect::NonManifoldEdge), 2) << d.summary();
+  EXPECT_EQ(d.defects[1].pointIds, (std::vector<std::int32_t>{ 0, 3 }));
+  EXPECT_EQ(d.defects[2].pointIds, (std::vector<std::int32_t>{ 3, 7 }));
+  EXPECT_EQ(d.defects.size(), 3u);
+}
+
+TEST(SurfaceDiagnosis, InconsistentOrientation)
+{
+  Surface s = cube();
+  s.tris[1] = 6; // triangle 0: (0,4,6) -> (0,6,4)
+  s.tris[2] = 4;
+  const SurfaceDiagnosis d = s.diagnose();
+  ASSERT_EQ(d.defects.size(), 3u) << d.summary();
+  expectRecord(d.defects[0], SurfaceDefect::InconsistentOrientation, { 0, 4 }, { 0, 5 });
+  expectRecord(d.defects[1], SurfaceDefect::InconsistentOrientation, { 0, 6 }, { 0, 1 });
+  expectRecord(d.defects[2], SurfaceDefect::InconsistentOrientation, { 4, 6 }, { 0, 11 });
+}
+
+TEST(SurfaceDiagnosis, SelfIntersectionPiercingTetrahedron)
+{
+  // A tetrahedron whose apex pokes through the top face, inside triangle 10 (4,5,7).
+  Surface s = cube();
+  const std::int32_t a = s.addPoint(0.6, 0.1, 0.5);
+  const std::int32_t b = s.addPoint(0.9, 0.1, 0.5);
+  const std::int32_t c = s.addPoint(0.8, 0.4, 0.5);
+  const std::int32_t apex = s.addPoint(0.7, 0.2, 1.5);
+  s.addTri(a, c, b);
+  const std::int32_t t13 = s.addTri(a, b, apex);
+  const std::int32_t t14 = s.addTri(b, c, apex);
+  const std::int32_t t15 = s.addTri(c, a, apex);
+  const SurfaceDiagnosis d = s.diagnose();
+  ASSERT_EQ(d.defects.size(), 3u) << d.summary();
+  expectRecord(d.defects[0], SurfaceDefect::SelfIntersection, { 4, 5, 7, 8, 9, 11 }, { 10, t13 });
+  expectRecord(d.defects[1], SurfaceDefect::SelfIntersection, { 4, 5, 7, 9, 10, 11 }, { 10, t14 });
+  expectRecord(d.defects[2], SurfaceDefect::SelfIntersection, { 4, 5, 7, 10, 8, 11 }, { 10, t15 });
+  EXPECT_EQ(d.summary(), "3 intersecting triangle pairs (triangles 10-13, 10-14, 10-15)");
+}
+
+TEST(SurfaceDiagnosis, SelfIntersectionCoplanarOverlap)
+{
+  // Tet A above z=0 and tet B below it, their bases overlapping in the plane z=0.
+  Surface s;
+  s.addPoint(0, 0, 0);
+  s.addPoint(2, 0, 0);
+  s.addPoint(0, 2, 0);
+  s.addPoint(0, 0, 1);
+  s.addPoint(0.5, 0.5, 0);
+  s.addPoint(3, 0.5, 0);
+  s.addPoint(0.5, 3, 0);
+  s.addPoint(0.5, 0.5, -1);
+  s.addTri(0, 2, 1); // 0 base of A
+  s.addTri(0, 1, 3); // 1
+  s.addTri(0, 3, 2); // 2
+  s.addTri(1, 2, 3); // 3 slanted face of A, touches B's base along x+y=2
+  s.addTri(4, 5, 6); // 4 base of B
+  s.addTri(4, 7, 5); // 5 side y=0.5 of B
+  s.addTri(4, 6, 7); // 6 side x=0.5 of B
+  s.addTri(5, 7, 6); // 7
+  EXPECT_NEAR(s.volume(), 2.0 / 3 + 2.5 * 2.5 / 6, 1e-12);
+  const SurfaceDiagnosis d = s.diagnose();
+  std::vector<std::vector<std::int32_t>> pairs;
+  for (const DefectRecord& r : d.defects)
+  {
+    EXPECT_EQ(r.kind, SurfaceDefect::SelfIntersection);
+    pairs.push_back(r.triangleIds);
+  }
+  const std::vector<std::vector<std::int32_t>> expected = {
+    { 0, 4 }, { 0, 5 }, { 0, 6 }, { 3, 4 }, { 3, 5 }, { 3, 6 }
+  };
+  EXPECT_EQ(pairs, expected) << d.summary();
+}
+
+TEST(SurfaceDiagnosis, TrianglePairPredicates)
+{
+  const double o[3] = { 0, 0, 0 }, x[3] = { 1, 0, 0 }, y[3] = { 0, 1, 0 }, xy[3] = { 1, 1, 0 };
+  const double z[3] = { 0, 0, 1 }, m[3] = { 0.5, 0.5, 0 }, nx[3] = { -1, 0, 0 };
+  const double ny[3] = { 0, -1, 0 }, d[3] = { 0.25, 0.25, 0 };
+  const std::int32_t i0[3] = { 0, 1, 2 };
+  {
+    // Coplanar, sharing edge o-x, third vertices on opposite sides: fine.
+    const double* p[3] = { o, x, y };
+    const double* q[3] = { x, o, ny };
+    const std::int32_t qi[3] = { 1, 0, 3 };
+    EXPECT_FALSE(trianglesIntersectImproperly(p, i0, q, qi));
+    // Same side: overlap.
+    const double* r[3] = { x, o, d };
+    const std::int32_t ri[3] = { 1, 0, 4 };
+    EXPECT_TRUE(trianglesIntersectImproperly(p, i0, r, ri));
+  }
+  {
+    // Coplanar, sharing vertex o only, angles apart: fine; angles overlapping: intersect.
+    const double* p[3] = { o, x, m };
+    const double* q[3] = { o, nx, ny };
+    const std::int32_t qi[3] = { 0, 5, 6 };
+    EXPECT_FALSE(trianglesIntersectImproperly(p, i0, q, qi));
+    const double* r[3] = { o, xy, y };
+    const std::int32_t ri[3] = { 0, 7, 8 };
+    EXPECT_TRUE(trianglesIntersectImproperly(p, i0, r, ri));
+  }
+  {
+    // Sharing vertex o, not coplanar, one edge lying in the other's plane inside its angle.
+    const double* p[3] = { o, x, y };
+    const double* q[3] = { o, d, z };
+    const std::int32_t qi[3] = { 0, 9, 10 };
+    EXPECT_TRUE(trianglesIntersectImproperly(p, i0, q, qi));
+    const double* r[3] = { o, nx, z };
+    const std::int32_t ri[3] = { 0, 11, 12 };
+    EXPECT_FALSE(trianglesIntersectImproperly(p, i0, r, ri));
+  }
+  EXPECT_TRUE(isTriangleDegenerate(o, m, xy));
+  EXPECT_FALSE(isTriangleDegenerate(o, x, m));
+}
+
+TEST(SurfaceDiagnosis, CorpusFiles)
+{
+  // Every .off/.stl in Data/ must be valid input. TETMESHER_DIAGNOSE_FILES (':'-separated
+  // paths) adds more files, e.g. procedural surfaces exported by scripts/make_corpus.py.
+  std::vector<std::string> files;
+  const std::filesystem::path data =
+    std::filesystem::path(__FILE__).parent_path().parent_path().parent_path() / "Data";
+  if (std::filesystem::is_directory(data))
+  {
+    for (const auto& entry : std::filesystem::directory_iterator(data))
+    {
+      const std::string ext = entry.path().extension().string();
+      if (ext == ".off" || ext == ".stl")
+        files.push_back(entry.path().string());
+    }
+  }
+  if (const char* extra = std::getenv("TETMESHER_DIAGNOSE_FILES"))
+  {
+    std::stringstream list(extra);
+    std::string path;
+    while (std::getline(list, path, ':'))
+    {
+      if (!path.empty())
+        files.push_back(path);
+    }
+  }
+  std::sort(files.begin(), files.end());
+  for (const std::string& path : files)
+  {
+    Surface s;
+    ASSERT_TRUE(readSurface(path, s)) << path;
+    const auto start = std::chrono::steady_clock::now();
+    const SurfaceDiagnosis d = s.diagnose();
+    const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    std::printf("%s: %d points, %d triangles, %.1f ms: %s\n",
+      path.c_str(),
+      s.pointCount(),
+      s.triCount(),
+      ms,
+      d.ok() ? "ok" : d.summary(5).c_str());
+    EXPECT_TRUE(d.ok()) << path << "\n" << d.summary();
+  }
+}
+
+TEST(SurfaceDiagnosis, PerformanceLargeSphere)
+{
+  const Surface s = icosphere(7); // 327680 triangles
+  const auto start = std::chrono::steady_clock::now();
+  const SurfaceDiagnosis d = s.diagnose();
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("diagnosis of %d triangles: %.3f s\n", s.triCount(), seconds);
+  EXPECT_TRUE(d.defects.empty()) << d.summary();
+}
