@@ -1,0 +1,381 @@
+#include "ConstraintRecovery.h"
+
+#include "Delaunay.h"
+#include "Flips.h"
+#include "MeshTopology.h"
+#include "Predicates.h"
+#include "RecoveryGeometry.h"
+
+#include <algorithm>
+#include <array>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <unordered_set>
+
+namespace tetmesher
+{
+namespace
+{
+
+struct WorkspaceDeleter
+{
+  void operator()(InsertionWorkspace* w) const { destroyInsertionWorkspace(w); }
+};
+
+class Recovery
+{
+public:
+  Recovery(TetMesh& mesh, const SurfaceInput& surface, const RecoveryOptions& options)
+    : mesh_(mesh)
+    , surface_(surface)
+    , options_(options)
+  {
+    index_.rebuild(mesh_);
+    for (const auto& e : surface_.edges)
+      inputEdges_.insert(edgeKey(e[0], e[1]));
+    for (const auto& t : surface_.triangles)
+    {
+      std::array<double, 6> box;
+      for (int k = 0; k < 3; ++k)
+      {
+        box[k] = std::min({ point(t[0])[k], point(t[1])[k], point(t[2])[k] });
+        box[k + 3] = std::max({ point(t[0])[k], point(t[1])[k], point(t[2])[k] });
+      }
+      triangleBoxes_.push_back(box);
+    }
+  }
+
+  RecoveryResult run(const std::function<bool(double)>& progress);
+
+private:
+  const double* point(VertexId v) const { return mesh_.point(v); }
+  TetVertices tetVertices(TetId t) const
+  {
+    return { mesh_.vertex(t, 0), mesh_.vertex(t, 1), mesh_.vertex(t, 2), mesh_.vertex(t, 3) };
+  }
+  bool tetMeets(const double* const* simplex, int count, const TetVertices& t) const
+  {
+    const double* p[4] = { point(t[0]), point(t[1]), point(t[2]), point(t[3]) };
+    return geometry::simplexMeetsTetInterior(simplex, count, p);
+  }
+
+  FlipCost edgeCost(VertexId a, VertexId b) const;
+  FlipCost faceCost(const std::array<VertexId, 3>& tri) const;
+  // Tets whose tet/face/edge terms of `cost` are positive, grown from the star of `seed`.
+  void collectPipe(VertexId seed, const FlipCost& cost, std::vector<TetId>& pipe);
+  int tetCost(const FlipCost& cost, TetId t) const;
+  // Greedy strictly-improving flips on the pipe; true when `done()` holds at the end.
+  bool flipUntil(VertexId seed, const FlipCost& cost, const std::function<bool()>& done);
+  bool insertSteinerNear(VertexId seed, const FlipCost& cost);
+  bool onInputSurface(const double* x) const;
+  void markConstrained(FaceRef face);
+
+  TetMesh& mesh_;
+  const SurfaceInput& surface_;
+  RecoveryOptions options_;
+  VertexTetIndex index_;
+  std::unordered_set<std::uint64_t> inputEdges_;
+  std::vector<std::array<double, 6>> triangleBoxes_;
+  std::unique_ptr<InsertionWorkspace, WorkspaceDeleter> workspace_{ createInsertionWorkspace() };
+  RecoveryResult result_;
+};
+
+FlipCost Recovery::edgeCost(VertexId a, VertexId b) const
+{
+  FlipCost c;
+  c.tet = [this, a, b](const TetVertices& t)
+  {
+    const double* s[2] = { point(a), point(b) };
+    return tetMeets(s, 2, t) ? 1 : 0;
+  };
+  c.face = [this, a, b](VertexId x, VertexId y, VertexId z)
+  {
+    return geometry::segmentMeetsTriangle(point(a), point(b), point(x), point(y), point(z)) ? 1 : 0;
+  };
+  c.edge = [this, a, b](VertexId u, VertexId v)
+  { return geometry::segmentsCross(point(a), point(b), point(u), point(v)) ? 1 : 0; };
+  return c;
+}
+
+FlipCost Recovery::faceCost(const std::array<VertexId, 3>& tri) const
+{
+  FlipCost c;
+  c.tet = [this, tri](const TetVertices& t)
+  {
+    const double* s[3] = { point(tri[0]), point(tri[1]), point(tri[2]) };
+    return tetMeets(s, 3, t) ? 1 : 0;
+  };
+  c.edge = [this, tri](VertexId u, VertexId v)
+  {
+    return geometry::segmentMeetsTriangle(
+             point(u), point(v), point(tri[0]), point(tri[1]), point(tri[2]))
+      ? 1
+      : 0;
+  };
+  return c;
+}
+
+int Recovery::tetCost(const FlipCost& cost, TetId t) const
+{
+  TetVertices v = tetVertices(t);
+  int c = cost.tet ? cost.tet(v) : 0;
+  for (int f = 0; f < 4 && cost.face; ++f)
+  {
+    const int* fv = kFaceVertices[f];
+    c += cost.face(v[fv[0]], v[fv[1]], v[fv[2]]);
+  }
+  for (int i = 0; i < 4 && cost.edge; ++i)
+    for (int j = i + 1; j < 4; ++j)
+      c += cost.edge(v[i], v[j]);
+  return c;
+}
+
+void Recovery::collectPipe(VertexId seed, const FlipCost& cost, std::vector<TetId>& pipe)
+{
+  std::vector<TetId> star;
+  vertexStar(mesh_, index_, seed, star);
+  pipe.clear();
+  std::set<TetId> visited(star.begin(), star.end());
+  for (TetId t : star)
+  {
+    if (tetCost(cost, t) > 0)
+      pipe.push_back(t);
+  }
+  for (std::size_t k = 0; k < pipe.size(); ++k)
+  {
+    for (int f = 0; f < 4; ++f)
+    {
+      FaceRef n = mesh_.neighbor(pipe[k], f);
+      if (n == kNoNeighbor || !visited.insert(faceTet(n)).second)
+        continue;
+      if (tetCost(cost, faceTet(n)) > 0)
+        pipe.push_back(faceTet(n));
+    }
+  }
+}
+
+bool Recovery::flipUntil(VertexId seed, const FlipCost& cost, const std::function<bool()>& done)
+{
+  std::vector<TetId> pipe;
+  for (int move = 0; move < options_.maxMovesPerItem; ++move)
+  {
+    if (done())
+      return true;
+    collectPipe(seed, cost, pipe);
+    FlipCandidate best, candidate;
+    int bestGain = 0;
+    bool bestIsFlip23 = false;
+    std::set<std::array<VertexId, 3>> triedFaces;
+    std::set<std::uint64_t> triedEdges;
+    auto consider = [&](bool isFlip23)
+    {
+      int gain = candidate.oldCost - candidate.newCost;
+      if (gain > bestGain ||
+        (gain == bestGain && gain > 0 && candidate.minQuality > best.minQuality))
+      {
+        bestGain = gain;
+        best = candidate;
+        bestIsFlip23 = isFlip23;
+      }
+    };
+    for (TetId t : pipe)
+    {
+      TetVertices v = tetVertices(t);
+      for (int f = 0; f < 4; ++f)
+      {
+        const int* fv = kFaceVertices[f];
+        if (!triedFaces.insert(sortedTriangle(v[fv[0]], v[fv[1]], v[fv[2]])).second)
+          continue;
+        if (flip23Candidate(mesh_, t, f, cost, candidate))
+          consider(true);
+      }
+      for (int i = 0; i < 4; ++i)
+      {
+        for (int j = i + 1; j < 4; ++j)
+        {
+          std::uint64_t key = edgeKey(v[i], v[j]);
+          if (inputEdges_.count(key) || !triedEdges.insert(key).second)
+            continue;
+          if (edgeRemovalCandidate(mesh_, t, v[i], v[j], cost, candidate))
+            consider(false);
+        }
+      }
+    }
+    if (bestGain <= 0)
+      return false;
+    replaceTets(mesh_, index_, best.oldTets, best.newTets);
+    if (bestIsFlip23)
+      ++result_.flips23;
+    else
+      ++result_.edgeRemovals;
+  }
+  return done();
+}
+
+bool Recovery::onInputSurface(const double* x) const
+{
+  for (std::size_t i = 0; i < surface_.triangles.size(); ++i)
+  {
+    const auto& box = triangleBoxes_[i];
+    if (x[0] < box[0] || x[1] < box[1] || x[2] < box[2] || x[0] > box[3] || x[1] > box[4] ||
+      x[2] > box[5])
+      continue;
+    const auto& t = surface_.triangles[i];
+    if (geometry::pointOnTriangle(x, point(t[0]), point(t[1]), point(t[2])))
+      return true;
+  }
+  return false;
+}
+
+bool Recovery::insertSteinerNear(VertexId seed, const FlipCost& cost)
+{
+  std::vector<TetId> pipe;
+  collectPipe(seed, cost, pipe);
+  // Prefer tets the item cuts through, from the middle of the pipe outwards.
+  std::vector<TetId> order;
+  for (TetId t : pipe)
+  {
+    if (cost.tet(tetVertices(t)) > 0)
+      order.push_back(t);
+  }
+  for (TetId t : pipe)
+  {
+    if (cost.tet(tetVertices(t)) == 0)
+      order.push_back(t);
+  }
+  std::size_t half = order.size() / 2;
+  std::rotate(order.begin(), order.begin() + half, order.end());
+  for (TetId t : order)
+  {
+    TetVertices v = tetVertices(t);
+    const double* p[4] = { point(v[0]), point(v[1]), point(v[2]), point(v[3]) };
+    double c[3];
+    for (int k = 0; k < 3; ++k)
+      c[k] = 0.25 * (p[0][k] + p[1][k] + p[2][k] + p[3][k]);
+    if (!geometry::pointInsideTet(c, p) || onInputSurface(c))
+      continue;
+    VertexId id = mesh_.addVertex(c[0], c[1], c[2]);
+    InsertResult r = insertVertex(mesh_, id, t, *workspace_);
+    if (r.status == InsertStatus::Inserted)
+    {
+      result_.steinerVertices.push_back(id);
+      index_.rebuild(mesh_);
+      return true;
+    }
+    mesh_.coords.resize(mesh_.coords.size() - 3);
+  }
+  return false;
+}
+
+void Recovery::markConstrained(FaceRef face)
+{
+  TetId t = faceTet(face);
+  int f = faceIndex(face);
+  mesh_.setConstrained(t, f, true);
+  FaceRef n = mesh_.neighbor(t, f);
+  if (n != kNoNeighbor)
+    mesh_.setConstrained(faceTet(n), faceIndex(n), true);
+}
+
+RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
+{
+  const auto& triangles = surface_.triangles;
+  const auto& edges = surface_.edges;
+  std::vector<char> recovered(triangles.size(), 0);
+  std::size_t recoveredCount = 0;
+  for (int round = 0;; ++round)
+  {
+    result_.rounds = round + 1;
+    if (progress && !progress(static_cast<double>(recoveredCount) / triangles.size()))
+    {
+      result_.error = "aborted during boundary recovery";
+      return result_;
+    }
+    int missingEdge = -1;
+    for (std::size_t e = 0; e < edges.size(); ++e)
+    {
+      VertexId a = edges[e][0], b = edges[e][1];
+      auto exists = [&] { return findEdge(mesh_, index_, a, b) >= 0; };
+      if (!flipUntil(a, edgeCost(a, b), exists) && missingEdge < 0)
+        missingEdge = static_cast<int>(e);
+    }
+    int missingFace = -1;
+    for (std::size_t i = 0; i < triangles.size(); ++i)
+    {
+      if (recovered[i])
+        continue;
+      const auto& t = triangles[i];
+      FaceRef face = findFace(mesh_, index_, t[0], t[1], t[2]);
+      bool edgesPresent = true;
+      for (int e = 0; e < 3 && face < 0 && edgesPresent; ++e)
+        edgesPresent = findEdge(mesh_, index_, t[e], t[(e + 1) % 3]) >= 0;
+      if (face < 0 && edgesPresent)
+      {
+        auto exists = [&]
+        {
+          face = findFace(mesh_, index_, t[0], t[1], t[2]);
+          return face >= 0;
+        };
+        flipUntil(t[0], faceCost(t), exists);
+      }
+      if (face >= 0)
+      {
+        markConstrained(face);
+        recovered[i] = 1;
+        ++recoveredCount;
+      }
+      else if (missingFace < 0)
+        missingFace = static_cast<int>(i);
+    }
+    if (missingEdge < 0 && missingFace < 0)
+    {
+      result_.ok = true;
+      return result_;
+    }
+
+    std::ostringstream item;
+    VertexId seed;
+    FlipCost cost;
+    if (missingEdge >= 0)
+    {
+      const auto& e = edges[missingEdge];
+      item << "input edge (" << e[0] << "," << e[1] << ") of triangle "
+           << surface_.edgeFirstTriangle[missingEdge];
+      seed = e[0];
+      cost = edgeCost(e[0], e[1]);
+    }
+    else
+    {
+      const auto& t = triangles[missingFace];
+      item << "input triangle " << missingFace << " (" << t[0] << "," << t[1] << "," << t[2] << ")";
+      seed = t[0];
+      cost = faceCost(t);
+    }
+    if (static_cast<int>(result_.steinerVertices.size()) >= options_.maxSteinerPoints)
+    {
+      result_.error = "could not recover " + item.str() + " within the budget of " +
+        std::to_string(options_.maxSteinerPoints) + " Steiner points";
+      return result_;
+    }
+    if (!insertSteinerNear(seed, cost))
+    {
+      result_.error = "could not recover " + item.str() +
+        ": no Steiner point could be placed near it (intersecting input?)";
+      return result_;
+    }
+  }
+}
+
+} // namespace
+
+RecoveryResult recoverBoundary(TetMesh& mesh,
+  const SurfaceInput& surface,
+  const RecoveryOptions& options,
+  const std::function<bool(double)>& progress)
+{
+  Recovery recovery(mesh, surface, options);
+  return recovery.run(progress);
+}
+
+} // namespace tetmesher

@@ -1,0 +1,50 @@
+// Boundary recovery (George-Hecht-Saltel 1990, section 3.4-3.5): turns a Delaunay mesh of the
+// input points into one that has every input edge and every input triangle as a face.
+//
+// Strategy, in rounds:
+//  1. each missing input edge, then each missing input face (whose edges exist), is recovered
+//     by 2-3 flips and edge removals (n -> 2n-4, including 3-2 and 4-4) chosen greedily; a
+//     move is kept only if it strictly lowers an exact integer measure of how much of the mesh
+//     the missing item cuts through (tets, faces and edges it crosses), so flipping ends;
+//  2. recovered faces are flagged constrained on both sides, so no later flip or insertion
+//     removes them;
+//  3. when flips are stuck, one Steiner point is inserted at the centroid of a tet the missing
+//     item cuts through (never on the input surface: checked exactly), by constrained
+//     Delaunay insertion, and the next round starts.
+// Work is bounded by the Steiner budget: an item still missing then is reported by id.
+#pragma once
+
+#include "SurfaceInput.h"
+#include "TetMesh.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace tetmesher
+{
+
+struct RecoveryOptions
+{
+  int maxSteinerPoints = 1000;
+  int maxMovesPerItem = 500;
+};
+
+struct RecoveryResult
+{
+  bool ok = false;
+  std::string error;
+  std::vector<VertexId> steinerVertices; // ids of the inserted points, in insertion order
+  int flips23 = 0;
+  int edgeRemovals = 0;
+  int rounds = 0;
+};
+
+// mesh: a valid triangulation of the input points (ids 0..n-1, as from buildDelaunay).
+// `progress` gets the fraction of input faces recovered; returning false aborts.
+RecoveryResult recoverBoundary(TetMesh& mesh,
+  const SurfaceInput& surface,
+  const RecoveryOptions& options,
+  const std::function<bool(double)>& progress = {});
+
+} // namespace tetmesher

@@ -1,0 +1,201 @@
+#include "Flips.h"
+
+#include "Predicates.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace tetmesher
+{
+namespace
+{
+int priceTet(const FlipCost& c, const TetVertices& t)
+{
+  return c.tet ? c.tet(t) : 0;
+}
+int priceFace(const FlipCost& c, VertexId a, VertexId b, VertexId d)
+{
+  return c.face ? c.face(a, b, d) : 0;
+}
+int priceEdge(const FlipCost& c, VertexId a, VertexId b)
+{
+  return c.edge ? c.edge(a, b) : 0;
+}
+
+bool positive(const TetMesh& mesh, const TetVertices& t)
+{
+  return predicates::orient3d(
+           mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2]), mesh.point(t[3])) > 0;
+}
+
+TetVertices tetOf(const TetMesh& mesh, TetId t)
+{
+  return { mesh.vertex(t, 0), mesh.vertex(t, 1), mesh.vertex(t, 2), mesh.vertex(t, 3) };
+}
+} // namespace
+
+double tetShape(const TetMesh& mesh, const TetVertices& t)
+{
+  const double* p[4];
+  for (int i = 0; i < 4; ++i)
+    p[i] = mesh.point(t[i]);
+  double u[3], v[3], w[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    u[k] = p[1][k] - p[0][k];
+    v[k] = p[2][k] - p[0][k];
+    w[k] = p[3][k] - p[0][k];
+  }
+  double volume = std::fabs(u[0] * (v[1] * w[2] - v[2] * w[1]) -
+                    u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0])) /
+    6.0;
+  double sum = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j)
+      for (int k = 0; k < 3; ++k)
+        sum += (p[i][k] - p[j][k]) * (p[i][k] - p[j][k]);
+  if (sum <= 0)
+    return 0;
+  // Regular tet of edge 1: volume 1/(6 sqrt 2), sum of squares 6.
+  double scale = std::pow(sum / 6.0, 1.5) / (6.0 * std::sqrt(2.0));
+  return std::min(1.0, volume / scale);
+}
+
+bool flip23Candidate(const TetMesh& mesh, TetId t, int f, const FlipCost& cost, FlipCandidate& out)
+{
+  FaceRef n = mesh.neighbor(t, f);
+  if (n == kNoNeighbor || mesh.isConstrained(t, f))
+    return false;
+  TetId u = faceTet(n);
+  VertexId a = mesh.vertex(t, f);
+  VertexId w = mesh.vertex(u, faceIndex(n));
+  const int* fv = kFaceVertices[f];
+  VertexId x = mesh.vertex(t, fv[0]), y = mesh.vertex(t, fv[1]), z = mesh.vertex(t, fv[2]);
+  // (x,y,z) faces out of t; t = (x,y,z,a) up to an even permutation. Replacing one face
+  // vertex by w keeps the orientation when aw crosses the face.
+  out.newTets = { { x, y, w, a }, { y, z, w, a }, { z, x, w, a } };
+  for (const TetVertices& nt : out.newTets)
+  {
+    if (!positive(mesh, nt))
+      return false;
+  }
+  out.oldTets = { t, u };
+  out.oldCost =
+    priceTet(cost, tetOf(mesh, t)) + priceTet(cost, tetOf(mesh, u)) + priceFace(cost, x, y, z);
+  out.newCost = priceEdge(cost, a, w) + priceFace(cost, a, w, x) + priceFace(cost, a, w, y) +
+    priceFace(cost, a, w, z);
+  out.minQuality = 1;
+  for (const TetVertices& nt : out.newTets)
+  {
+    out.newCost += priceTet(cost, nt);
+    out.minQuality = std::min(out.minQuality, tetShape(mesh, nt));
+  }
+  return true;
+}
+
+bool edgeRemovalCandidate(const TetMesh& mesh,
+  TetId t,
+  VertexId p,
+  VertexId q,
+  const FlipCost& cost,
+  FlipCandidate& out,
+  int maxRing)
+{
+  std::vector<TetId> shell;
+  std::vector<VertexId> ring;
+  if (!edgeShell(mesh, t, p, q, shell, ring))
+    return false;
+  const int n = static_cast<int>(ring.size());
+  if (n < 3 || n > maxRing)
+    return false;
+  for (TetId s : shell)
+  {
+    for (int f = 0; f < 4; ++f)
+    {
+      VertexId opposite = mesh.vertex(s, f);
+      if (opposite != p && opposite != q && mesh.isConstrained(s, f))
+        return false; // a face around the edge is an input face
+    }
+  }
+
+  // Ring triangles (i<j<k) give the tets (ri,rj,rk,q) and (rj,ri,rk,p), both positive when
+  // the triangle separates p from q properly.
+  struct Score
+  {
+    int cost = std::numeric_limits<int>::max();
+    double quality = -1;
+    int split = -1;
+    bool valid() const { return split >= 0; }
+  };
+  auto better = [](int c, double qual, const Score& s)
+  { return !s.valid() || c < s.cost || (c == s.cost && qual > s.quality); };
+  std::vector<Score> best(static_cast<std::size_t>(n) * n);
+  auto at = [&](int i, int k) -> Score& { return best[static_cast<std::size_t>(i) * n + k]; };
+  for (int span = 2; span < n; ++span)
+  {
+    for (int i = 0; i + span < n; ++i)
+    {
+      int k = i + span;
+      for (int j = i + 1; j < k; ++j)
+      {
+        int c = 0;
+        double qual = 1;
+        for (auto [a, b] : { std::pair<int, int>{ i, j }, std::pair<int, int>{ j, k } })
+        {
+          if (b - a < 2)
+            continue;
+          const Score& sub = at(a, b);
+          if (!sub.valid())
+          {
+            c = -1;
+            break;
+          }
+          c += sub.cost + priceEdge(cost, ring[a], ring[b]) + priceFace(cost, p, ring[a], ring[b]) +
+            priceFace(cost, q, ring[a], ring[b]);
+          qual = std::min(qual, sub.quality);
+        }
+        if (c < 0)
+          continue;
+        TetVertices upper = { ring[i], ring[j], ring[k], q };
+        TetVertices lower = { ring[j], ring[i], ring[k], p };
+        if (!positive(mesh, upper) || !positive(mesh, lower))
+          continue;
+        c += priceTet(cost, upper) + priceTet(cost, lower) +
+          priceFace(cost, ring[i], ring[j], ring[k]);
+        qual = std::min({ qual, tetShape(mesh, upper), tetShape(mesh, lower) });
+        if (better(c, qual, at(i, k)))
+          at(i, k) = { c, qual, j };
+      }
+    }
+  }
+  const Score& root = at(0, n - 1);
+  if (!root.valid())
+    return false;
+
+  out.oldTets = shell;
+  out.oldCost = priceEdge(cost, p, q);
+  for (int k = 0; k < n; ++k)
+  {
+    out.oldCost += priceFace(cost, p, q, ring[k]) + priceTet(cost, tetOf(mesh, shell[k]));
+  }
+  out.newCost = root.cost;
+  out.minQuality = root.quality;
+  out.newTets.clear();
+  std::vector<std::pair<int, int>> stack = { { 0, n - 1 } };
+  while (!stack.empty())
+  {
+    auto [i, k] = stack.back();
+    stack.pop_back();
+    if (k - i < 2)
+      continue;
+    int j = at(i, k).split;
+    out.newTets.push_back({ ring[i], ring[j], ring[k], q });
+    out.newTets.push_back({ ring[j], ring[i], ring[k], p });
+    stack.push_back({ i, j });
+    stack.push_back({ j, k });
+  }
+  return true;
+}
+
+} // namespace tetmesher

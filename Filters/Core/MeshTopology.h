@@ -1,0 +1,62 @@
+// Local topology queries and edits on a TetMesh that the recovery stage needs: a vertex ->
+// tet index, vertex stars, edge and face look-up, the ordered shell of tets around an edge,
+// and a generic "replace these tets by those" that re-glues neighbours and keeps the
+// constraint flags of the faces on the replaced region's boundary.
+#pragma once
+
+#include "TetMesh.h"
+
+#include <array>
+#include <vector>
+
+namespace tetmesher
+{
+
+using TetVertices = std::array<VertexId, 4>;
+
+// One incident live tet per vertex, repaired lazily: a stale entry (deleted tet, reused slot)
+// triggers a full rebuild, so callers may edit the mesh freely between queries.
+class VertexTetIndex
+{
+public:
+  void rebuild(const TetMesh& mesh);
+  // A live tet incident to v, or -1 when v is in no tet (e.g. a duplicate point).
+  TetId tetOf(const TetMesh& mesh, VertexId v);
+  void note(TetId t, const TetMesh& mesh);
+
+private:
+  std::vector<TetId> vertexTet_;
+};
+
+// Local index (0..3) of v in tet t, or -1.
+int localIndex(const TetMesh& mesh, TetId t, VertexId v);
+
+// All live tets incident to v (empty when v is in no tet).
+void vertexStar(const TetMesh& mesh, VertexTetIndex& index, VertexId v, std::vector<TetId>& star);
+
+// A tet having edge (a,b), or -1.
+TetId findEdge(const TetMesh& mesh, VertexTetIndex& index, VertexId a, VertexId b);
+
+// A face ref 4*t+f of a tet face with vertices {a,b,c}, or -1.
+FaceRef findFace(const TetMesh& mesh, VertexTetIndex& index, VertexId a, VertexId b, VertexId c);
+
+// The tets around edge (p,q), starting at tet t (which must contain the edge), in order, and
+// the ring of opposite vertices: shell[k] = (p, q, ring[k], ring[k+1]) up to an even
+// permutation (so orient3d(p, q, ring[k], ring[k+1]) > 0). Returns false when the edge lies
+// on the hull (open shell).
+bool edgeShell(const TetMesh& mesh,
+  TetId t,
+  VertexId p,
+  VertexId q,
+  std::vector<TetId>& shell,
+  std::vector<VertexId>& ring);
+
+// Replaces the live tets `oldTets` by `newTets` (positively oriented, covering exactly the
+// same region). Faces shared with the rest of the mesh are glued back with their constraint
+// flags; faces between two new tets are glued to each other.
+void replaceTets(TetMesh& mesh,
+  VertexTetIndex& index,
+  const std::vector<TetId>& oldTets,
+  const std::vector<TetVertices>& newTets);
+
+} // namespace tetmesher

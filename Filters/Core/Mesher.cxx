@@ -1,0 +1,170 @@
+#include "Mesher.h"
+
+#include "ConstraintRecovery.h"
+#include "Delaunay.h"
+#include "Regions.h"
+#include "SurfaceInput.h"
+#include "TetMesh.h"
+
+#include <chrono>
+#include <map>
+#include <sstream>
+
+namespace tetmesher
+{
+namespace
+{
+double secondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+} // namespace
+
+MesherResult meshSurface(const double* points,
+  std::int32_t pointCount,
+  const std::int32_t* triangles,
+  std::int32_t triangleCount,
+  const MesherOptions& options,
+  const std::function<bool(double progress)>& progress)
+{
+  const auto start = std::chrono::steady_clock::now();
+  MesherResult result;
+  auto report = [&](double fraction) { return !progress || progress(fraction); };
+
+  SurfaceInput surface;
+  result.error = buildSurfaceInput(points, pointCount, triangles, triangleCount, surface);
+  if (!result.error.empty())
+    return result;
+  if (!report(0.0))
+  {
+    result.error = "aborted";
+    return result;
+  }
+
+  // Stage 1: Delaunay of the input points.
+  auto stageStart = std::chrono::steady_clock::now();
+  TetMesh mesh;
+  mesh.coords.assign(points, points + 3 * static_cast<std::size_t>(pointCount));
+  DelaunayResult delaunay = buildDelaunay(mesh);
+  result.delaunaySeconds = secondsSince(stageStart);
+  if (!delaunay.ok)
+  {
+    result.error = "Delaunay tetrahedralization failed: " + delaunay.error;
+    return result;
+  }
+  if (!delaunay.duplicates.empty())
+  {
+    std::ostringstream error;
+    error << "points " << delaunay.duplicateOf[0] << " and " << delaunay.duplicates[0]
+          << " coincide (" << delaunay.duplicates.size() << " duplicate points)";
+    result.error = error.str();
+    return result;
+  }
+  if (!report(0.2))
+  {
+    result.error = "aborted";
+    return result;
+  }
+
+  // Stage 2: boundary recovery.
+  stageStart = std::chrono::steady_clock::now();
+  RecoveryOptions recoveryOptions;
+  recoveryOptions.maxSteinerPoints =
+    options.maxSteinerPoints >= 0 ? options.maxSteinerPoints : 100 + 4 * triangleCount;
+  recoveryOptions.maxMovesPerItem = options.maxMovesPerItem;
+  RecoveryResult recovery = recoverBoundary(
+    mesh, surface, recoveryOptions, [&](double f) { return report(0.2 + 0.7 * f); });
+  result.recoverySeconds = secondsSince(stageStart);
+  result.flips23 = recovery.flips23;
+  result.edgeRemovals = recovery.edgeRemovals;
+  if (!recovery.ok)
+  {
+    result.error = recovery.error;
+    return result;
+  }
+
+  // Stage 3: exterior removal and regions.
+  stageStart = std::chrono::steady_clock::now();
+  RegionOptions regionOptions;
+  regionOptions.firstBoxVertex = delaunay.firstBoxVertex;
+  regionOptions.enclosedShellsAreHoles = options.enclosedShellsAreHoles;
+  RegionResult regions = classifyRegions(mesh, regionOptions);
+  result.regionCount = regions.regionCount;
+
+  // Compaction: input points keep their ids, used Steiner points follow in insertion order.
+  std::vector<std::int32_t> newId(mesh.vertexCount(), -1);
+  for (std::int32_t v = 0; v < pointCount; ++v)
+    newId[v] = v;
+  std::int32_t nextId = pointCount;
+  std::vector<TetId> kept;
+  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+  {
+    if (!mesh.isDeleted(t) && regions.tetRegion[t] >= 0)
+      kept.push_back(t);
+  }
+  // One pass marks the used Steiner vertices (box corners are exterior by construction).
+  std::vector<char> used(mesh.vertexCount(), 0);
+  for (TetId t : kept)
+    for (int i = 0; i < 4; ++i)
+      used[mesh.vertex(t, i)] = 1;
+  for (VertexId v = pointCount; v < mesh.vertexCount(); ++v)
+  {
+    if (used[v] && (v < delaunay.firstBoxVertex || v >= delaunay.firstBoxVertex + 8))
+      newId[v] = nextId++;
+  }
+  result.steinerPoints = nextId - pointCount;
+  result.points.resize(3 * static_cast<std::size_t>(nextId));
+  for (VertexId v = 0; v < mesh.vertexCount(); ++v)
+  {
+    if (newId[v] >= 0)
+      for (int k = 0; k < 3; ++k)
+        result.points[3 * static_cast<std::size_t>(newId[v]) + k] = mesh.coords[3 * v + k];
+  }
+  std::map<std::array<VertexId, 3>, std::int32_t> triangleOf;
+  for (std::int32_t i = 0; i < triangleCount; ++i)
+  {
+    const auto& tri = surface.triangles[i];
+    triangleOf.emplace(sortedTriangle(tri[0], tri[1], tri[2]), i);
+  }
+  result.boundaryFaceTet.assign(triangleCount, -1);
+  result.tets.reserve(4 * kept.size());
+  result.regionIds.reserve(kept.size());
+  for (std::size_t k = 0; k < kept.size(); ++k)
+  {
+    TetId t = kept[k];
+    for (int i = 0; i < 4; ++i)
+      result.tets.push_back(newId[mesh.vertex(t, i)]);
+    result.regionIds.push_back(regions.tetRegion[t]);
+    for (int f = 0; f < 4; ++f)
+    {
+      if (!mesh.isConstrained(t, f))
+        continue;
+      const int* fv = kFaceVertices[f];
+      auto it = triangleOf.find(
+        sortedTriangle(mesh.vertex(t, fv[0]), mesh.vertex(t, fv[1]), mesh.vertex(t, fv[2])));
+      if (it != triangleOf.end() && result.boundaryFaceTet[it->second] < 0)
+        result.boundaryFaceTet[it->second] = static_cast<std::int32_t>(4 * k + f);
+    }
+  }
+  result.regionsSeconds = secondsSince(stageStart);
+  for (std::int32_t i = 0; i < triangleCount; ++i)
+  {
+    if (result.boundaryFaceTet[i] < 0)
+    {
+      // Only possible if a triangle has exterior (or hole) on both sides: a fin or a wall
+      // inside a hole.
+      result.error = "input triangle " + std::to_string(i) +
+        " bounds no kept tetrahedron (exterior on both sides)";
+      result.points.clear();
+      result.tets.clear();
+      result.regionIds.clear();
+      return result;
+    }
+  }
+  result.ok = true;
+  result.totalSeconds = secondsSince(start);
+  report(1.0);
+  return result;
+}
+
+} // namespace tetmesher

@@ -1,0 +1,55 @@
+// The entry point of the VTK-free mesher: a closed triangulated surface in, a tetrahedral mesh
+// of its interior out, whose boundary faces are exactly the input triangles (no Steiner point
+// on the input surface, coordinates bit-identical, output points 0..n-1 = input points).
+// The VTK filter and the CLI wrap exactly this function.
+//
+// Stages: Delaunay of the input points in a box (Delaunay.h) -> boundary recovery by flips and
+// interior Steiner points (ConstraintRecovery.h) -> exterior removal and regions (Regions.h)
+// -> compaction (box corners dropped, Steiner points numbered after the input points).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace tetmesher
+{
+
+struct MesherOptions
+{
+  // Components enclosed by a region (e.g. inside the inner of two nested spheres... the
+  // space between shells at even depth) become holes instead of regions of their own.
+  bool enclosedShellsAreHoles = false;
+  // Budget of recovery Steiner points; -1: 100 + 4 per input triangle.
+  int maxSteinerPoints = -1;
+  // Bound on flips tried per missing edge/face and per round.
+  int maxMovesPerItem = 500;
+};
+
+struct MesherResult
+{
+  bool ok = false;
+  std::string error;                         // names the defect and the input triangle/edge ids
+  std::vector<double> points;                // 3 per vertex; the first nInput are the input points
+  std::vector<std::int32_t> tets;            // 4 per tet, positively oriented (orient3d > 0)
+  std::vector<std::int32_t> regionIds;       // 1 per tet, 0..regionCount-1
+  std::vector<std::int32_t> boundaryFaceTet; // per input triangle: 4*t+f of an equal tet face
+  int steinerPoints = 0;                     // points in the output beyond the input points
+  int regionCount = 0;
+  int flips23 = 0;
+  int edgeRemovals = 0;
+  double delaunaySeconds = 0;
+  double recoverySeconds = 0;
+  double regionsSeconds = 0;
+  double totalSeconds = 0;
+};
+
+MesherResult meshSurface(const double* points,
+  std::int32_t pointCount,
+  const std::int32_t* triangles,
+  std::int32_t triangleCount,
+  const MesherOptions& options = {},
+  const std::function<bool(double progress)>& progress = {} /* return false to abort */);
+
+} // namespace tetmesher

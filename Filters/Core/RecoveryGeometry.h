@@ -1,0 +1,36 @@
+// Exact intersection tests used by boundary recovery: does a missing input edge or face cut
+// through a mesh edge, face or tetrahedron? Every answer comes from orient3d/orient2d signs, so
+// the recovery loop measures its progress without any tolerance.
+//
+// "Open" means relative interior: an open segment excludes its end points, an open triangle
+// its edges. The tests assume what a valid mesh guarantees: no vertex lies in the relative
+// interior of an edge or face it is not a vertex of.
+#pragma once
+
+namespace tetmesher
+{
+namespace geometry
+{
+
+// Open segment ab meets open triangle pqr (transversally, or overlapping when coplanar).
+bool segmentMeetsTriangle(const double* a,
+  const double* b,
+  const double* p,
+  const double* q,
+  const double* r);
+
+// Open segments ab and pq cross at one point interior to both (coplanar, not collinear).
+bool segmentsCross(const double* a, const double* b, const double* p, const double* q);
+
+// The relative interior of the convex hull of `count` points (2: a segment, 3: a triangle)
+// meets the interior of the non-degenerate tetrahedron t[0..3].
+bool simplexMeetsTetInterior(const double* const* points, int count, const double* const t[4]);
+
+// Point x lies on the closed triangle pqr (coplanar and inside or on its edges).
+bool pointOnTriangle(const double* x, const double* p, const double* q, const double* r);
+
+// Point x lies strictly inside the positively oriented tetrahedron t[0..3].
+bool pointInsideTet(const double* x, const double* const t[4]);
+
+} // namespace geometry
+} // namespace tetmesher

@@ -1,0 +1,32 @@
+// Exterior removal and region marking (George-Hecht-Saltel 1990, section 3.6): once every
+// input face is a constrained face, flood fill over tet adjacency that does not cross one
+// splits the box into components. Components with a box corner are exterior. The others are
+// numbered; their nesting depth (how many input surfaces separate them from the exterior)
+// tells enclosed shells apart, which become holes on request.
+#pragma once
+
+#include "TetMesh.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace tetmesher
+{
+
+struct RegionOptions
+{
+  VertexId firstBoxVertex = -1; // box corners are firstBoxVertex .. firstBoxVertex+7
+  // Components at even depth >= 2 (inside a region, e.g. the inner ball of two nested
+  // spheres) are holes instead of regions of their own.
+  bool enclosedShellsAreHoles = false;
+};
+
+struct RegionResult
+{
+  std::vector<std::int32_t> tetRegion; // per tet slot: region id, or -1 (exterior, hole, free)
+  int regionCount = 0;
+};
+
+RegionResult classifyRegions(const TetMesh& mesh, const RegionOptions& options);
+
+} // namespace tetmesher

@@ -1,0 +1,95 @@
+#include "SurfaceInput.h"
+
+#include "Predicates.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <utility>
+
+namespace tetmesher
+{
+
+std::array<VertexId, 3> sortedTriangle(VertexId a, VertexId b, VertexId c)
+{
+  std::array<VertexId, 3> k = { a, b, c };
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+std::string buildSurfaceInput(const double* points,
+  std::int32_t pointCount,
+  const std::int32_t* triangles,
+  std::int32_t triangleCount,
+  SurfaceInput& out)
+{
+  std::ostringstream error;
+  out = SurfaceInput();
+  out.pointCount = pointCount;
+  if (pointCount < 4 || triangleCount < 4 || !points || !triangles)
+    return "empty input: a closed surface needs at least 4 points and 4 triangles";
+  for (std::int32_t i = 0; i < 3 * pointCount; ++i)
+  {
+    if (!std::isfinite(points[i]))
+    {
+      error << "point " << i / 3 << " has a non-finite coordinate";
+      return error.str();
+    }
+  }
+  std::map<std::array<VertexId, 3>, std::int32_t> seen;
+  std::vector<std::pair<std::uint64_t, std::int32_t>> edgeUses;
+  out.triangles.reserve(triangleCount);
+  for (std::int32_t t = 0; t < triangleCount; ++t)
+  {
+    std::array<VertexId, 3> v = { triangles[3 * t], triangles[3 * t + 1], triangles[3 * t + 2] };
+    for (VertexId id : v)
+    {
+      if (id < 0 || id >= pointCount)
+      {
+        error << "triangle " << t << " references point id " << id << " out of range [0,"
+              << pointCount << ")";
+        return error.str();
+      }
+    }
+    const double* p[3] = { points + 3 * v[0], points + 3 * v[1], points + 3 * v[2] };
+    bool collinear = predicates::orient2d(p[0], p[1], p[2], 0) == 0 &&
+      predicates::orient2d(p[0], p[1], p[2], 1) == 0 &&
+      predicates::orient2d(p[0], p[1], p[2], 2) == 0;
+    if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2] || collinear)
+    {
+      error << "triangle " << t << " (" << v[0] << "," << v[1] << "," << v[2] << ") is degenerate";
+      return error.str();
+    }
+    auto inserted = seen.emplace(sortedTriangle(v[0], v[1], v[2]), t);
+    if (!inserted.second)
+    {
+      error << "triangles " << inserted.first->second << " and " << t << " are duplicates";
+      return error.str();
+    }
+    out.triangles.push_back(v);
+    for (int e = 0; e < 3; ++e)
+      edgeUses.push_back({ edgeKey(v[e], v[(e + 1) % 3]), t });
+  }
+  std::sort(edgeUses.begin(), edgeUses.end());
+  for (std::size_t i = 0; i < edgeUses.size();)
+  {
+    std::size_t j = i;
+    while (j < edgeUses.size() && edgeUses[j].first == edgeUses[i].first)
+      ++j;
+    VertexId a = static_cast<VertexId>(edgeUses[i].first >> 32);
+    VertexId b = static_cast<VertexId>(edgeUses[i].first & 0xffffffffu);
+    if (j - i < 2)
+    {
+      error << "open edge (" << a << "," << b << ") of triangle " << edgeUses[i].second
+            << ": the surface must be closed";
+      return error.str();
+    }
+    out.edges.push_back({ a, b });
+    out.edgeFirstTriangle.push_back(edgeUses[i].second);
+    i = j;
+  }
+  return std::string();
+}
+
+} // namespace tetmesher

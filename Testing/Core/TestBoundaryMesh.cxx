@@ -1,0 +1,184 @@
+// Boundary-conforming meshing of procedurally built closed surfaces: every success is checked
+// exactly (MeshChecks.h) for the contract of meshSurface: boundary faces == input triangles,
+// no Steiner point on the input surface, volume == enclosed volume, positive tets, regions,
+// bit-identical input points, determinism.
+#include "MeshChecks.h"
+#include "Mesher.h"
+#include "SurfaceGenerators.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+using namespace tetmesher;
+using namespace tetmesher::testing;
+
+namespace
+{
+
+MesherResult meshAndCheck(const Surface& s,
+  const std::vector<int>& volumeSign,
+  int regions,
+  const MesherOptions& options = {})
+{
+  MesherResult r =
+    meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), options);
+  std::string failure = checkMesh(s, r, volumeSign, regions);
+  EXPECT_EQ(failure, "");
+  if (r.ok)
+  {
+    std::printf("  %d points, %d triangles -> %zu tets, %d Steiner, %d flips23, %d edge "
+                "removals; delaunay %.3fs recovery %.3fs regions %.3fs\n",
+      s.pointCount(),
+      s.triangleCount(),
+      r.tets.size() / 4,
+      r.steinerPoints,
+      r.flips23,
+      r.edgeRemovals,
+      r.delaunaySeconds,
+      r.recoverySeconds,
+      r.regionsSeconds);
+  }
+  return r;
+}
+
+std::vector<int> allOutward(const Surface& s)
+{
+  return std::vector<int>(s.triangleCount(), 1);
+}
+
+} // namespace
+
+TEST(BoundaryMesh, Cube)
+{
+  Surface s = cube(1);
+  ASSERT_EQ(s.triangleCount(), 12);
+  MesherResult r = meshAndCheck(s, allOutward(s), 1);
+  EXPECT_EQ(r.steinerPoints, 0);
+}
+
+TEST(BoundaryMesh, SubdividedCube)
+{
+  for (int n : { 2, 3, 5 })
+  {
+    Surface s = cube(n);
+    meshAndCheck(s, allOutward(s), 1);
+  }
+}
+
+TEST(BoundaryMesh, Icosphere)
+{
+  for (int level = 0; level <= 3; ++level)
+  {
+    Surface s = icosphere(level);
+    meshAndCheck(s, allOutward(s), 1);
+  }
+}
+
+TEST(BoundaryMesh, Torus)
+{
+  Surface s = torus(1.0, 0.3, 24, 12);
+  meshAndCheck(s, allOutward(s), 1);
+}
+
+TEST(BoundaryMesh, NestedSpheresTwoRegions)
+{
+  Surface s = icosphere(2, 1.0);
+  std::int32_t outer = s.triangleCount();
+  s.append(icosphere(1, 0.5));
+  std::vector<int> sign(s.triangleCount(), 0);
+  std::fill(sign.begin(), sign.begin() + outer, 1);
+  meshAndCheck(s, sign, 2);
+}
+
+TEST(BoundaryMesh, NestedSpheresHole)
+{
+  Surface s = icosphere(2, 1.0);
+  std::int32_t outer = s.triangleCount();
+  s.append(icosphere(1, 0.5));
+  std::vector<int> sign(s.triangleCount(), -1);
+  std::fill(sign.begin(), sign.begin() + outer, 1);
+  MesherOptions options;
+  options.enclosedShellsAreHoles = true;
+  meshAndCheck(s, sign, 1, options);
+}
+
+TEST(BoundaryMesh, ThinSlab)
+{
+  Surface s = box({ 0, 0, 0 }, { 1, 1, 0.02 }, { 8, 8, 1 });
+  meshAndCheck(s, allOutward(s), 1);
+}
+
+TEST(BoundaryMesh, SlottedRing)
+{
+  Surface s = slottedRing(12, 4, 0.4, 0.6, 1.0, 0.3);
+  meshAndCheck(s, allOutward(s), 1);
+}
+
+TEST(BoundaryMesh, SchonhardtPrism)
+{
+  Surface s = schonhardtPrism();
+  MesherResult r = meshAndCheck(s, allOutward(s), 1);
+  EXPECT_GE(r.steinerPoints, 1) << "the Schonhardt prism has no tetrahedralization without one";
+}
+
+TEST(BoundaryMesh, JitteredIcosphere)
+{
+  Surface s = icosphere(3);
+  jitter(s, 0.02, 12345);
+  meshAndCheck(s, allOutward(s), 1);
+}
+
+TEST(BoundaryMesh, JitteredTorus)
+{
+  Surface s = torus(1.0, 0.3, 32, 12);
+  jitter(s, 0.02, 777);
+  meshAndCheck(s, allOutward(s), 1);
+}
+
+TEST(BoundaryMesh, TwoCubesSharingAFace)
+{
+  std::vector<char> shared;
+  Surface s = twoCubes(shared);
+  std::vector<int> sign(s.triangleCount());
+  for (std::int32_t t = 0; t < s.triangleCount(); ++t)
+    sign[t] = shared[t] ? 0 : 1;
+  meshAndCheck(s, sign, 2);
+}
+
+TEST(BoundaryMesh, Deterministic)
+{
+  Surface s = icosphere(3);
+  jitter(s, 0.02, 99);
+  MesherResult a =
+    meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount());
+  MesherResult b =
+    meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount());
+  ASSERT_TRUE(a.ok) << a.error;
+  EXPECT_EQ(a.points, b.points);
+  EXPECT_EQ(a.tets, b.tets);
+  EXPECT_EQ(a.regionIds, b.regionIds);
+  EXPECT_EQ(a.boundaryFaceTet, b.boundaryFaceTet);
+}
+
+TEST(BoundaryMesh, RefusesOpenSurface)
+{
+  Surface s = cube(1);
+  s.triangles.resize(s.triangles.size() - 3);
+  MesherResult r =
+    meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount());
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("open edge"), std::string::npos) << r.error;
+}
+
+TEST(BoundaryMesh, AbortIsHonoured)
+{
+  Surface s = icosphere(2);
+  MesherResult r = meshSurface(s.points.data(),
+    s.pointCount(),
+    s.triangles.data(),
+    s.triangleCount(),
+    {},
+    [](double) { return false; });
+  EXPECT_FALSE(r.ok);
+}
