@@ -1,4 +1,4 @@
-// Incremental Delaunay insertion (Bowyer-Watson) in a 5-tet box, George-Hecht-Saltel 1990 §2.
+// Incremental Delaunay insertion (Bowyer-Watson) in a box, George-Hecht-Saltel 1990 §2.
 //
 // Insertion of a point p:
 //  1. locate: a visibility walk from a hint tet, crossing a face that p sees negatively
@@ -555,26 +555,39 @@ DelaunayResult buildDelaunay(TetMesh& mesh, const DelaunayOptions& options)
       (corner & 2) ? hi[1] + margin : lo[1] - margin,
       (corner & 4) ? hi[2] + margin : lo[2] - margin);
 
-  // Five tets: four corner tets cut off corners 0, 3, 5, 6, and the central tet (1,2,4,7).
-  const int kBoxTets[5][4] = {
-    { 0, 1, 2, 4 }, { 3, 1, 2, 7 }, { 5, 1, 4, 7 }, { 6, 2, 4, 7 }, { 1, 2, 4, 7 }
-  };
-  TetId box[5];
-  for (int i = 0; i < 5; ++i)
-  {
-    VertexId v[4];
-    for (int k = 0; k < 4; ++k)
-      v[k] = n + kBoxTets[i][k];
-    if (predicates::orient3d(
-          mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]), mesh.point(v[3])) < 0)
-      std::swap(v[0], v[1]);
-    box[i] = mesh.addTet(v[0], v[1], v[2], v[3]);
-  }
-  glueByMatching(mesh, box, 5);
+  // The 8 corners are cospherical, so which triangulation of the box is Delaunay is decided
+  // by the symbolic perturbation: take the 4-subsets whose (perturbed) circumsphere is empty
+  // of the other corners. That is 5 tets or 6 depending on the perturbation, and it keeps the
+  // whole construction consistently (perturbed-)Delaunay from the start.
+  TetId box[8];
+  int boxCount = 0;
+  for (int i = 0; i < 8; ++i)
+    for (int j = i + 1; j < 8; ++j)
+      for (int k = j + 1; k < 8; ++k)
+        for (int l = k + 1; l < 8; ++l)
+        {
+          VertexId v[4] = { n + i, n + j, n + k, n + l };
+          const int o = predicates::orient3d(
+            mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2]), mesh.point(v[3]));
+          if (o == 0)
+            continue;
+          if (o < 0)
+            std::swap(v[0], v[1]);
+          bool empty = true;
+          for (int m = 0; m < 8 && empty; ++m)
+          {
+            const VertexId w = n + m;
+            if (w != v[0] && w != v[1] && w != v[2] && w != v[3])
+              empty = predicates::insphereSoS(mesh, v[0], v[1], v[2], v[3], w) < 0;
+          }
+          if (empty && boxCount < 8)
+            box[boxCount++] = mesh.addTet(v[0], v[1], v[2], v[3]);
+        }
+  glueByMatching(mesh, box, boxCount);
 
   const std::vector<VertexId> order = brioOrder(mesh.coords.data(), n);
   InsertionWorkspace ws;
-  TetId hint = box[4];
+  TetId hint = box[0];
   for (VertexId v : order)
   {
     const InsertResult r = insertImpl<false>(mesh, v, hint, ws);

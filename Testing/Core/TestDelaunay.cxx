@@ -1,0 +1,369 @@
+// Delaunay kernel: exact validity on random, degenerate (grid, sphere), clustered and
+// duplicate-laden input; determinism; hull volume; constrained insertion.
+#include "Delaunay.h"
+#include "MeshValidation.h"
+#include "Predicates.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <random>
+#include <set>
+
+using namespace tetmesher;
+
+namespace
+{
+
+TetMesh randomPoints(int n, unsigned seed, double lo = 0, double hi = 1)
+{
+  TetMesh mesh;
+  std::mt19937_64 gen(seed);
+  std::uniform_real_distribution<double> u(lo, hi);
+  for (int i = 0; i < n; ++i)
+    mesh.addVertex(u(gen), u(gen), u(gen));
+  return mesh;
+}
+
+TetMesh gridPoints(int m)
+{
+  TetMesh mesh;
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j)
+      for (int k = 0; k < m; ++k)
+        mesh.addVertex(i, j, k);
+  return mesh;
+}
+
+// farBox: the box tets only leave the convex hull of the input when the box is far enough
+// that no Delaunay ball of a hull face reaches a box corner; hull tests ask for a far box.
+void buildAndValidate(TetMesh& mesh, DelaunayResult* out = nullptr, bool farBox = false)
+{
+  const VertexId n = mesh.vertexCount();
+  DelaunayOptions options;
+  options.validate = true;
+  if (farBox)
+    options.boxEnlargement = 1e4;
+  DelaunayResult r = buildDelaunay(mesh, options);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.firstBoxVertex, n);
+  EXPECT_EQ(mesh.vertexCount(), n + 8);
+  if (out)
+    *out = r;
+}
+
+// Number of live tets; hull faces are exactly the 12 triangles of the box.
+void expectBoxHull(const TetMesh& mesh)
+{
+  int hullFaces = 0;
+  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+    if (!mesh.isDeleted(t))
+      for (int f = 0; f < 4; ++f)
+        hullFaces += mesh.neighbor(t, f) == kNoNeighbor;
+  EXPECT_EQ(hullFaces, 12);
+}
+
+} // namespace
+
+TEST(Delaunay, EmptyAndTinyInputs)
+{
+  for (int n : { 0, 1, 2, 3, 4, 5 })
+  {
+    TetMesh mesh = randomPoints(n, 7);
+    buildAndValidate(mesh);
+    expectBoxHull(mesh);
+  }
+}
+
+TEST(Delaunay, RandomPointsAreExactlyValid)
+{
+  for (int n : { 10000, 100000 })
+  {
+    TetMesh mesh = randomPoints(n, 42 + n);
+    buildAndValidate(mesh);
+    expectBoxHull(mesh);
+  }
+}
+
+TEST(Delaunay, GridIsValidAndFillsTheCube)
+{
+  // A 20^3 grid: every cell is cospherical, every grid plane coplanar.
+  TetMesh mesh = gridPoints(20);
+  DelaunayResult r;
+  buildAndValidate(mesh, &r, true);
+  // Removing the tets that touch the box leaves the convex hull: the cube [0,19]^3.
+  EXPECT_NEAR(
+    static_cast<double>(volumeWithoutVertices(mesh, r.firstBoxVertex)), 19.0 * 19 * 19, 1e-9);
+}
+
+TEST(Delaunay, PointsOnASphere)
+{
+  TetMesh mesh;
+  std::mt19937_64 gen(3);
+  std::normal_distribution<double> g;
+  for (int i = 0; i < 20000; ++i)
+  {
+    double x = g(gen), y = g(gen), z = g(gen);
+    double r = std::sqrt(x * x + y * y + z * z);
+    mesh.addVertex(x / r, y / r, z / r);
+  }
+  // Exactly cospherical too: integer points on x^2+y^2+z^2 = 25*16.
+  for (int x = -20; x <= 20; ++x)
+    for (int y = -20; y <= 20; ++y)
+      for (int z = -20; z <= 20; ++z)
+        if (x * x + y * y + z * z == 400)
+          mesh.addVertex(x + 100, y, z);
+  buildAndValidate(mesh);
+}
+
+TEST(Delaunay, ClusteredPoints)
+{
+  TetMesh mesh;
+  std::mt19937_64 gen(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::normal_distribution<double> g;
+  for (int c = 0; c < 20; ++c)
+  {
+    const double cx = u(gen) * 1000, cy = u(gen) * 1000, cz = u(gen) * 1000;
+    const double spread = std::pow(10.0, -6 + 6 * u(gen));
+    for (int i = 0; i < 2000; ++i)
+      mesh.addVertex(cx + spread * g(gen), cy + spread * g(gen), cz + spread * g(gen));
+  }
+  buildAndValidate(mesh);
+}
+
+TEST(Delaunay, DuplicatesAreReportedNotInserted)
+{
+  TetMesh mesh = randomPoints(3000, 5);
+  std::mt19937_64 gen(9);
+  const VertexId original = mesh.vertexCount();
+  for (int i = 0; i < 3000; ++i)
+  {
+    const VertexId src = static_cast<VertexId>(gen() % original);
+    const double* p = mesh.point(src);
+    mesh.addVertex(p[0], p[1], p[2]);
+  }
+  // And a small grid repeated three times.
+  for (int rep = 0; rep < 3; ++rep)
+    for (int i = 0; i < 5; ++i)
+      for (int j = 0; j < 5; ++j)
+        for (int k = 0; k < 5; ++k)
+          mesh.addVertex(2 + i, j, k);
+  DelaunayResult r;
+  buildAndValidate(mesh, &r);
+  ASSERT_EQ(r.duplicates.size(), r.duplicateOf.size());
+  EXPECT_EQ(r.duplicates.size(), 3000u + 250u);
+  for (std::size_t i = 0; i < r.duplicates.size(); ++i)
+  {
+    const double* a = mesh.point(r.duplicates[i]);
+    const double* b = mesh.point(r.duplicateOf[i]);
+    EXPECT_TRUE(a[0] == b[0] && a[1] == b[1] && a[2] == b[2]);
+    EXPECT_NE(r.duplicates[i], r.duplicateOf[i]);
+  }
+}
+
+TEST(Delaunay, SameInputGivesIdenticalMesh)
+{
+  TetMesh a = randomPoints(20000, 77);
+  TetMesh b = a;
+  ASSERT_TRUE(buildDelaunay(a).ok);
+  ASSERT_TRUE(buildDelaunay(b).ok);
+  EXPECT_EQ(a.tets, b.tets);
+  EXPECT_EQ(a.neighbors, b.neighbors);
+  TetMesh g1 = gridPoints(12), g2 = gridPoints(12);
+  ASSERT_TRUE(buildDelaunay(g1).ok);
+  ASSERT_TRUE(buildDelaunay(g2).ok);
+  EXPECT_EQ(g1.tets, g2.tets);
+}
+
+TEST(Delaunay, HullVolumeWithCubeCorners)
+{
+  // Random points inside [0,1]^3 plus the 8 corners: the convex hull is the unit cube.
+  TetMesh mesh = randomPoints(30000, 21);
+  for (int c = 0; c < 8; ++c)
+    mesh.addVertex(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+  DelaunayResult r;
+  buildAndValidate(mesh, &r, true);
+  EXPECT_NEAR(static_cast<double>(volumeWithoutVertices(mesh, r.firstBoxVertex)), 1.0, 1e-12);
+}
+
+TEST(Delaunay, HullVolumeOfRandomPointsMatchesGiftWrap)
+{
+  // Independent hull volume: brute-force hull facets (every triple with all points on one
+  // side, exact orient3d) summed as cones from an interior point. Small n keeps it O(n^4)-ok.
+  TetMesh mesh = randomPoints(60, 99);
+  const VertexId n = mesh.vertexCount();
+  std::vector<double> pts(mesh.coords);
+  double centroid[3] = { 0, 0, 0 };
+  for (VertexId v = 0; v < n; ++v)
+    for (int k = 0; k < 3; ++k)
+      centroid[k] += pts[3 * v + k] / n;
+  long double hullVolume = 0;
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b)
+      for (int c = b + 1; c < n; ++c)
+      {
+        int pos = 0, neg = 0;
+        for (int d = 0; d < n && !(pos && neg); ++d)
+        {
+          if (d == a || d == b || d == c)
+            continue;
+          int s = predicates::orient3d(&pts[3 * a], &pts[3 * b], &pts[3 * c], &pts[3 * d]);
+          pos += s > 0;
+          neg += s < 0;
+        }
+        if (pos && neg)
+          continue;
+        const double* p[3] = { &pts[3 * a], &pts[3 * b], &pts[3 * c] };
+        long double m[3][3];
+        for (int r = 0; r < 3; ++r)
+          for (int k = 0; k < 3; ++k)
+            m[r][k] = static_cast<long double>(p[r][k]) - centroid[k];
+        long double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+          m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+          m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+        hullVolume += std::fabs(det) / 6;
+      }
+  DelaunayResult r;
+  buildAndValidate(mesh, &r, true);
+  EXPECT_NEAR(static_cast<double>(volumeWithoutVertices(mesh, r.firstBoxVertex)),
+    static_cast<double>(hullVolume),
+    1e-12);
+}
+
+namespace
+{
+
+// The sorted vertex triples of all faces flagged constrained.
+std::set<std::array<VertexId, 3>> constrainedFaces(const TetMesh& mesh)
+{
+  std::set<std::array<VertexId, 3>> faces;
+  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+    if (!mesh.isDeleted(t))
+      for (int f = 0; f < 4; ++f)
+        if (mesh.isConstrained(t, f))
+        {
+          std::array<VertexId, 3> v;
+          for (int k = 0; k < 3; ++k)
+            v[k] = mesh.vertex(t, kFaceVertices[f][k]);
+          std::sort(v.begin(), v.end());
+          faces.insert(v);
+        }
+  return faces;
+}
+
+} // namespace
+
+TEST(Delaunay, InsertVertexRespectsConstrainedFaces)
+{
+  TetMesh mesh = randomPoints(2000, 123);
+  DelaunayResult r = buildDelaunay(mesh);
+  ASSERT_TRUE(r.ok);
+  // Mark every 7th interior face as constrained on both sides.
+  int marked = 0;
+  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+    for (int f = 0; f < 4; ++f)
+    {
+      const FaceRef n = mesh.neighbor(t, f);
+      if (n == kNoNeighbor || (t * 4 + f) % 7 != 0)
+        continue;
+      mesh.setConstrained(t, f, true);
+      mesh.setConstrained(faceTet(n), faceIndex(n), true);
+      ++marked;
+    }
+  ASSERT_GT(marked, 100);
+  const auto before = constrainedFaces(mesh);
+
+  InsertionWorkspace* ws = createInsertionWorkspace();
+  std::mt19937_64 gen(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  TetId hint = 0;
+  int inserted = 0;
+  std::vector<VertexId> absent = r.duplicates;
+  for (int i = 0; i < 3000; ++i)
+  {
+    const VertexId v = mesh.addVertex(u(gen), u(gen), u(gen));
+    InsertResult ir = insertVertex(mesh, v, hint, *ws);
+    if (ir.status == InsertStatus::Inserted)
+    {
+      ++inserted;
+      hint = ir.tet;
+    }
+    else
+    {
+      absent.push_back(v);
+    }
+  }
+  // A point exactly on a constrained face (its centroid rounded) may be refused, never
+  // mangled: take exact midpoints of constrained face edges, which lie on the face boundary.
+  int refused = 0;
+  for (const auto& face : before)
+  {
+    if (refused >= 20)
+      break;
+    const double* a = mesh.point(face[0]);
+    const double* b = mesh.point(face[1]);
+    double m[3];
+    for (int k = 0; k < 3; ++k)
+      m[k] = (a[k] + b[k]) / 2; // rounded: keep only the midpoints exactly on the edge
+    bool onEdge = true;
+    for (int drop = 0; drop < 3; ++drop)
+      onEdge = onEdge && predicates::orient2d(a, b, m, drop) == 0;
+    if (!onEdge)
+      continue;
+    const VertexId v = mesh.addVertex(m[0], m[1], m[2]);
+    InsertResult ir = insertVertex(mesh, v, hint, *ws);
+    EXPECT_EQ(ir.status, InsertStatus::OnConstraint);
+    absent.push_back(v);
+    ++refused;
+  }
+  destroyInsertionWorkspace(ws);
+  EXPECT_GT(inserted, 2900);
+  EXPECT_EQ(checkOrientation(mesh), "");
+  EXPECT_EQ(checkAdjacency(mesh, true), "");
+  EXPECT_EQ(checkVerticesPresent(mesh, mesh.vertexCount(), absent), "");
+  // Every constrained face is still there, still flagged; no scratch bits left behind.
+  const auto after = constrainedFaces(mesh);
+  for (const auto& f : before)
+    EXPECT_TRUE(after.count(f)) << f[0] << " " << f[1] << " " << f[2];
+  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+  {
+    if (!mesh.isDeleted(t))
+    {
+      EXPECT_EQ(mesh.flags[t] & 0xF0, 0);
+    }
+  }
+  EXPECT_GT(refused, 5);
+}
+
+TEST(Delaunay, InsertVertexIntoDelaunayKeepsItDelaunay)
+{
+  // Without constraints the checked insertion is plain Bowyer-Watson: points on faces and
+  // edges of a grid mesh (half-integer coordinates) must keep the mesh exactly Delaunay.
+  TetMesh mesh = gridPoints(6);
+  ASSERT_TRUE(buildDelaunay(mesh).ok);
+  InsertionWorkspace* ws = createInsertionWorkspace();
+  TetId hint = 0;
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j)
+    {
+      const VertexId v = mesh.addVertex(i + 0.5, j + 0.5, 2); // on grid faces
+      InsertResult ir = insertVertex(mesh, v, hint, *ws);
+      ASSERT_EQ(ir.status, InsertStatus::Inserted);
+      hint = ir.tet;
+      const VertexId w = mesh.addVertex(i + 0.5, j, 3); // on grid edges
+      ir = insertVertex(mesh, w, hint, *ws);
+      ASSERT_EQ(ir.status, InsertStatus::Inserted);
+    }
+  const VertexId dup = mesh.addVertex(1, 2, 3);
+  InsertResult ir = insertVertex(mesh, dup, hint, *ws);
+  EXPECT_EQ(ir.status, InsertStatus::Duplicate);
+  EXPECT_EQ(ir.existing, 1 * 36 + 2 * 6 + 3);
+  const VertexId outside = mesh.addVertex(1e6, 0, 0);
+  EXPECT_EQ(insertVertex(mesh, outside, hint, *ws).status, InsertStatus::OutsideMesh);
+  destroyInsertionWorkspace(ws);
+  EXPECT_EQ(validateDelaunayMesh(mesh, mesh.vertexCount() - 2, {}), "");
+  EXPECT_GE(locatePoint(mesh, mesh.point(3), 0), 0);
+}
