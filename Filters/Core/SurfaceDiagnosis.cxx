@@ -421,22 +421,47 @@ private:
       cell = std::max(cell, (hi[k] - lo[k]) / double(1 << 20));
     if (!(cell > 0) || !std::isfinite(cell))
       cell = 1;
-    auto cellIndex = [&](double x, int k)
-    {
-      const double f = std::floor((x - lo[k]) / cell);
-      return static_cast<std::uint32_t>(std::min(std::max(f, 0.0), double((1 << 21) - 1)));
-    };
     std::vector<std::uint32_t> range(6 * m);
+    // Triangles whose box covers many cells (a few big faces among many small ones) stay out
+    // of the grid and are tested against every box; when there are too many of them, the
+    // cells grow instead.
+    constexpr std::uint64_t kLargeCells = 64;
+    const std::size_t maxLarge = 64 + m / 256;
+    std::vector<std::uint32_t> large;
+    std::uint64_t entryCount = 0;
+    for (;;)
+    {
+      large.clear();
+      entryCount = 0;
+      for (std::size_t i = 0; i < m; ++i)
+      {
+        std::uint32_t* r = &range[6 * i];
+        std::uint64_t cells = 1;
+        for (int k = 0; k < 3; ++k)
+        {
+          r[k] = cellIndex(box[6 * i + k] - lo[k], cell);
+          r[3 + k] = cellIndex(box[6 * i + 3 + k] - lo[k], cell);
+          cells *= r[3 + k] - r[k] + 1;
+        }
+        if (cells > kLargeCells)
+          large.push_back(static_cast<std::uint32_t>(i));
+        else
+          entryCount += cells;
+      }
+      if (large.size() <= maxLarge)
+        break;
+      cell *= 2;
+    }
     std::vector<std::pair<std::uint64_t, std::uint32_t>> entries;
-    entries.reserve(4 * m);
+    entries.reserve(entryCount);
+    std::vector<bool> isLarge(m, false);
+    for (std::uint32_t i : large)
+      isLarge[i] = true;
     for (std::size_t i = 0; i < m; ++i)
     {
-      std::uint32_t* r = &range[6 * i];
-      for (int k = 0; k < 3; ++k)
-      {
-        r[k] = cellIndex(box[6 * i + k], k);
-        r[3 + k] = cellIndex(box[6 * i + 3 + k], k);
-      }
+      if (isLarge[i])
+        continue;
+      const std::uint32_t* r = &range[6 * i];
       for (std::uint32_t x = r[0]; x <= r[3]; ++x)
         for (std::uint32_t y = r[1]; y <= r[4]; ++y)
           for (std::uint32_t z = r[2]; z <= r[5]; ++z)
@@ -445,20 +470,42 @@ private:
     std::sort(entries.begin(), entries.end());
 
     std::vector<std::pair<std::int32_t, std::int32_t>> found;
-    for (std::size_t s = 0; s < entries.size();)
+    const std::size_t limit = Options.maxRecordsPerKind;
+    auto boxesOverlap = [&](std::uint32_t i, std::uint32_t j)
+    {
+      const double* bi = &box[6 * i];
+      const double* bj = &box[6 * j];
+      return !(bi[3] < bj[0] || bj[3] < bi[0] || bi[4] < bj[1] || bj[4] < bi[1] || bi[5] < bj[2] ||
+        bj[5] < bi[2]);
+    };
+    auto test = [&](std::uint32_t i, std::uint32_t j)
+    {
+      if (intersect(cand[i], cand[j]))
+        found.push_back({ std::min(cand[i], cand[j]), std::max(cand[i], cand[j]) });
+      return limit != 0 && found.size() > limit;
+    };
+    bool stop = false;
+    // Large triangles against every other box (each large pair once).
+    for (std::uint32_t i : large)
+    {
+      for (std::uint32_t j = 0; j < m && !stop; ++j)
+      {
+        if (j == i || (isLarge[j] && j < i) || !boxesOverlap(i, j))
+          continue;
+        stop = test(i, j);
+      }
+    }
+    for (std::size_t s = 0; s < entries.size() && !stop;)
     {
       std::size_t e = s + 1;
       while (e < entries.size() && entries[e].first == entries[s].first)
         ++e;
-      for (std::size_t a = s; a < e; ++a)
+      for (std::size_t a = s; a < e && !stop; ++a)
       {
-        for (std::size_t b = a + 1; b < e; ++b)
+        for (std::size_t b = a + 1; b < e && !stop; ++b)
         {
           const std::uint32_t i = entries[a].second, j = entries[b].second;
-          const double* bi = &box[6 * i];
-          const double* bj = &box[6 * j];
-          if (bi[3] < bj[0] || bj[3] < bi[0] || bi[4] < bj[1] || bj[4] < bi[1] || bi[5] < bj[2] ||
-            bj[5] < bi[2])
+          if (!boxesOverlap(i, j))
             continue;
           // Test each pair once: in the first cell both boxes cover.
           const std::uint32_t* ri = &range[6 * i];
@@ -466,16 +513,9 @@ private:
           if (key(std::max(ri[0], rj[0]), std::max(ri[1], rj[1]), std::max(ri[2], rj[2])) !=
             entries[s].first)
             continue;
-          if (intersect(cand[i], cand[j]))
-          {
-            found.push_back({ std::min(cand[i], cand[j]), std::max(cand[i], cand[j]) });
-            if (Options.maxRecordsPerKind != 0 && found.size() > Options.maxRecordsPerKind)
-              break;
-          }
+          stop = test(i, j);
         }
       }
-      if (Options.maxRecordsPerKind != 0 && found.size() > Options.maxRecordsPerKind)
-        break;
       s = e;
     }
     std::sort(found.begin(), found.end());
@@ -487,6 +527,14 @@ private:
         { v[0], v[1], v[2], w[0], w[1], w[2] },
         { pr.first, pr.second });
     }
+  }
+
+  // Cell index of an offset from the grid origin; monotone in x, so overlapping boxes always
+  // share a cell.
+  static std::uint32_t cellIndex(double x, double cell)
+  {
+    const double f = std::floor(x / cell);
+    return static_cast<std::uint32_t>(std::min(std::max(f, 0.0), double((1 << 21) - 1)));
   }
 
   static std::uint64_t key(std::uint32_t x, std::uint32_t y, std::uint32_t z)

@@ -17,6 +17,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -760,6 +761,112 @@ TEST(SurfaceDiagnosis, CorpusFiles)
       d.ok() ? "ok" : d.summary(5).c_str());
     EXPECT_TRUE(d.ok()) << path << "\n" << d.summary();
   }
+}
+
+TEST(SurfaceDiagnosis, FineSphereInsideTiltedCoarseBox)
+{
+  // Nested shells with very different triangle sizes: the box's big tilted triangles cover
+  // many grid cells and take the "large triangle" path.
+  // Tilted box around the sphere (valid), then an axis-aligned box whose face x=0 cuts it.
+  for (double shift : { 0.0, 2.5 })
+  {
+    Surface s = icosphere(5);
+    const std::int32_t offset = s.pointCount();
+    const Surface box = cube();
+    const double angle = shift == 0 ? 0.5 : 0.0;
+    const double c = std::cos(angle), sn = std::sin(angle);
+    for (std::int32_t i = 0; i < box.pointCount(); ++i)
+    {
+      const double x = 5 * (box.pts[3 * i] - 0.5), y = 5 * (box.pts[3 * i + 1] - 0.5),
+                   z = 5 * (box.pts[3 * i + 2] - 0.5);
+      const double y1 = c * y - sn * z, z1 = sn * y + c * z;
+      s.addPoint(c * x - sn * z1 + shift, y1, sn * x + c * z1);
+    }
+    for (std::int32_t t : box.tris)
+      s.tris.push_back(t + offset);
+    const SurfaceDiagnosis d = s.diagnose();
+    if (shift == 0)
+      EXPECT_TRUE(d.defects.empty()) << d.summary();
+    else
+    {
+      EXPECT_GT(d.count(SurfaceDefect::SelfIntersection), 0) << d.summary();
+      EXPECT_EQ(d.count(SurfaceDefect::SelfIntersection), static_cast<int>(d.defects.size()));
+      for (const DefectRecord& r : d.defects)
+        EXPECT_GE(r.triangleIds[1], s.triCount() - 12); // always a sphere/box pair
+    }
+  }
+}
+
+TEST(SurfaceDiagnosis, GridAgreesWithBruteForce)
+{
+  // Random soup of triangles on a shared pool of points (many shared vertices and edges) with
+  // a few big ones: the grid must find exactly the pairs an all-pairs test finds.
+  std::uint64_t state = 12345;
+  auto next = [&]()
+  {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  for (int round = 0; round < 3; ++round)
+  {
+    Surface s;
+    for (int i = 0; i < 300; ++i)
+      s.addPoint(next(), next(), next() * (round == 2 ? 0 : 1)); // round 2: all coplanar
+    std::set<std::array<std::int32_t, 3>> seen;
+    while (s.triCount() < 500)
+    {
+      const bool big = s.triCount() % 50 == 0;
+      std::array<std::int32_t, 3> v;
+      v[0] = static_cast<std::int32_t>(next() * 300);
+      for (int k = 1; k < 3; ++k)
+        v[k] = big ? static_cast<std::int32_t>(next() * 300)
+                   : (v[0] + 1 + static_cast<std::int32_t>(next() * 5)) % 300;
+      std::array<std::int32_t, 3> key = v;
+      std::sort(key.begin(), key.end());
+      if (key[0] == key[1] || key[1] == key[2] || !seen.insert(key).second)
+        continue;
+      const double* p0 = &s.pts[3 * v[0]];
+      const double* p1 = &s.pts[3 * v[1]];
+      const double* p2 = &s.pts[3 * v[2]];
+      if (isTriangleDegenerate(p0, p1, p2))
+        continue;
+      s.addTri(v[0], v[1], v[2]);
+    }
+    std::vector<std::vector<std::int32_t>> expected;
+    for (std::int32_t a = 0; a < s.triCount(); ++a)
+    {
+      for (std::int32_t b = a + 1; b < s.triCount(); ++b)
+      {
+        const std::int32_t* ia = &s.tris[3 * a];
+        const std::int32_t* ib = &s.tris[3 * b];
+        const double* pa[3] = { &s.pts[3 * ia[0]], &s.pts[3 * ia[1]], &s.pts[3 * ia[2]] };
+        const double* pb[3] = { &s.pts[3 * ib[0]], &s.pts[3 * ib[1]], &s.pts[3 * ib[2]] };
+        if (trianglesIntersectImproperly(pa, ia, pb, ib))
+          expected.push_back({ a, b });
+      }
+    }
+    const SurfaceDiagnosis d = s.diagnose();
+    std::vector<std::vector<std::int32_t>> pairs;
+    for (const DefectRecord& r : d.defects)
+    {
+      if (r.kind == SurfaceDefect::SelfIntersection)
+        pairs.push_back(r.triangleIds);
+    }
+    EXPECT_GT(expected.size(), 10u);
+    EXPECT_EQ(pairs, expected) << "round " << round;
+  }
+}
+
+TEST(SurfaceDiagnosis, RecordLimit)
+{
+  Surface s = cube();
+  s.tris.resize(33);
+  DiagnosisOptions options;
+  options.maxRecordsPerKind = 2;
+  const SurfaceDiagnosis d =
+    diagnoseSurface(s.pts.data(), s.pointCount(), s.tris.data(), s.triCount(), options);
+  EXPECT_EQ(d.count(SurfaceDefect::OpenEdge), 2);
+  EXPECT_TRUE(d.truncated);
 }
 
 TEST(SurfaceDiagnosis, PerformanceLargeSphere)
