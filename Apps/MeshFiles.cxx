@@ -1,5 +1,7 @@
 #include "MeshFiles.h"
+#include "Report.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
 #include "vtkCellType.h"
 #include "vtkCommand.h"
@@ -31,21 +33,6 @@ namespace cli
 namespace
 {
 
-// Collects the error messages a VTK reader emits, so that we can report them as ours.
-class ErrorCollector : public vtkCommand
-{
-public:
-  static ErrorCollector* New() { return new ErrorCollector; }
-  void Execute(vtkObject*, unsigned long, void* data) override
-  {
-    if (data)
-    {
-      Messages += static_cast<const char*>(data);
-    }
-  }
-  std::string Messages;
-};
-
 [[noreturn]] void Fail(const std::string& path, const std::string& what)
 {
   throw FileError(path + ": " + what);
@@ -73,22 +60,12 @@ void RequireReadableFile(const std::string& path)
   }
 }
 
-template <typename Reader>
-void RunReader(Reader* reader, const std::string& path)
+void RunReader(vtkAlgorithm* reader, const std::string& path)
 {
-  vtkNew<ErrorCollector> errors;
-  reader->AddObserver(vtkCommand::ErrorEvent, errors);
-  reader->Update();
-  if (!errors->Messages.empty() || reader->GetErrorCode() != 0)
+  std::string error = RunFilter(reader);
+  if (!error.empty())
   {
-    std::string detail = errors->Messages;
-    // VTK messages carry a source location prefix; keep the text after the last newline.
-    detail.erase(std::remove(detail.begin(), detail.end(), '\r'), detail.end());
-    while (!detail.empty() && detail.back() == '\n')
-    {
-      detail.pop_back();
-    }
-    Fail(path, "unreadable (" + (detail.empty() ? std::string("reader error") : detail) + ")");
+    Fail(path, "unreadable (" + error + ")");
   }
 }
 
@@ -464,7 +441,7 @@ vtkSmartPointer<vtkDataSet> ReadVolumeMesh(const std::string& path)
   {
     vtkNew<vtkXMLGenericDataObjectReader> reader;
     reader->SetFileName(path.c_str());
-    RunReader(reader.Get(), path);
+    RunReader(reader, path);
     auto data = vtkDataSet::SafeDownCast(reader->GetOutputDataObject(0));
     if (!data)
       Fail(path, "does not hold a dataset");
@@ -474,7 +451,7 @@ vtkSmartPointer<vtkDataSet> ReadVolumeMesh(const std::string& path)
   {
     vtkNew<vtkDataSetReader> reader;
     reader->SetFileName(path.c_str());
-    RunReader(reader.Get(), path);
+    RunReader(reader, path);
     auto data = vtkDataSet::SafeDownCast(reader->GetOutputDataObject(0));
     if (!data)
       Fail(path, "does not hold a dataset");
@@ -497,21 +474,21 @@ vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path)
     vtkNew<vtkSTLReader> reader;
     reader->SetFileName(path.c_str());
     reader->MergingOn();
-    RunReader(reader.Get(), path);
+    RunReader(reader, path);
     surface = reader->GetOutput();
   }
   else if (ext == ".obj")
   {
     vtkNew<vtkOBJReader> reader;
     reader->SetFileName(path.c_str());
-    RunReader(reader.Get(), path);
+    RunReader(reader, path);
     surface = reader->GetOutput();
   }
   else if (ext == ".ply")
   {
     vtkNew<vtkPLYReader> reader;
     reader->SetFileName(path.c_str());
-    RunReader(reader.Get(), path);
+    RunReader(reader, path);
     surface = reader->GetOutput();
   }
   else if (ext == ".vtp" || ext == ".vtk" || ext == ".vtu")

@@ -4,6 +4,7 @@
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDataSet.h"
+#include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkNew.h"
 #include "vtkTable.h"
@@ -26,7 +27,7 @@ public:
     // Drop VTK's "ERROR: In file, line N\nvtkClass (0x..): " prefix: keep the last line.
     while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
       message.pop_back();
-    auto colon = message.find("): ");
+    auto colon = message.rfind("): ");
     if (colon != std::string::npos)
       message = message.substr(colon + 3);
     if (!Text.empty())
@@ -45,10 +46,15 @@ double Field(vtkDataSet* mesh, const char* name)
 
 std::string RunFilter(vtkAlgorithm* filter)
 {
-  vtkNew<ErrorText> errors;
+  // The executive repeats every failure as its own error: observe it too, and keep ours.
+  vtkNew<ErrorText> errors, pipelineErrors;
   filter->AddObserver(vtkCommand::ErrorEvent, errors);
+  filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, pipelineErrors);
   filter->Update();
   filter->RemoveObserver(errors);
+  filter->GetExecutive()->RemoveObserver(pipelineErrors);
+  if (errors->Text.empty() && !pipelineErrors->Text.empty())
+    return "the pipeline failed";
   return errors->Text;
 }
 

@@ -15,7 +15,7 @@ if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
 packages=(
   build-essential cmake ninja-build pkg-config git clang-format
   libvtk9-dev python3-vtk9 python3-numpy
-  paraview paraview-dev qtbase5-dev qttools5-dev libqt5svg5-dev qtxmlpatterns5-dev-tools
+  paraview paraview-dev qtbase5-dev qttools5-dev libqt5svg5-dev qtxmlpatterns5-dev-tools libqt5opengl5-dev
   libgtest-dev libgmp-dev xvfb xauth
   tetgen gmsh libcgal-dev
 )
@@ -34,31 +34,33 @@ fi
 
 # pvpython in a private prefix, beside python3-vtk9.
 stamp="$PV_PREFIX/.tetmesher-prefix-ok"
+libdir=/usr/lib/x86_64-linux-gnu
 if [ ! -f "$stamp" ]; then
-  echo "setup: building the pvpython prefix in $PV_PREFIX"
+  echo "setup: unpacking python3-paraview into $PV_PREFIX"
   tmp="$(mktemp -d)"
-  (cd "$tmp" && apt-get download python3-paraview >/dev/null)
+  chmod 755 "$tmp"
+  (cd "$tmp" && apt-get download python3-paraview >/dev/null 2>&1)
   $SUDO rm -rf "$PV_PREFIX"
   $SUDO mkdir -p "$PV_PREFIX"
   $SUDO dpkg -x "$tmp"/python3-paraview_*.deb "$PV_PREFIX"
   rm -rf "$tmp"
-  libdir=/usr/lib/x86_64-linux-gnu
-  mirror() { # mirror SRC DST: symlink every entry of SRC into DST unless DST has it already
-    $SUDO mkdir -p "$2"
-    for entry in "$1"/* "$1"/.[!.]*; do
-      [ -e "$entry" ] || [ -L "$entry" ] || continue
-      name="$(basename "$entry")"
-      [ -e "$2/$name" ] || [ -L "$2/$name" ] || $SUDO ln -s "$entry" "$2/$name"
-    done
-  }
   # ParaView's CMake targets compute their prefix from the file's location: a real copy.
   $SUDO mkdir -p "$PV_PREFIX$libdir/cmake"
   $SUDO cp -r "$libdir/cmake/paraview-5.11" "$PV_PREFIX$libdir/cmake/"
-  mirror "$libdir/cmake" "$PV_PREFIX$libdir/cmake"
-  mirror "$libdir" "$PV_PREFIX$libdir"
-  mirror /usr/bin "$PV_PREFIX/usr/bin"
-  mirror /usr/share "$PV_PREFIX/usr/share"
-  [ -e "$PV_PREFIX/usr/include" ] || $SUDO ln -s /usr/include "$PV_PREFIX/usr/include"
   $SUDO touch "$stamp"
 fi
+# Mirror the system dirs around it (every run: packages installed later appear too).
+mirror() { # mirror SRC DST: symlink every entry of SRC into DST unless DST has it already
+  $SUDO mkdir -p "$2"
+  for entry in "$1"/* "$1"/.[!.]*; do
+    [ -e "$entry" ] || [ -L "$entry" ] || continue
+    name="$(basename "$entry")"
+    [ -e "$2/$name" ] || [ -L "$2/$name" ] || $SUDO ln -s "$entry" "$2/$name"
+  done
+}
+mirror "$libdir/cmake" "$PV_PREFIX$libdir/cmake"
+mirror "$libdir" "$PV_PREFIX$libdir"
+mirror /usr/bin "$PV_PREFIX/usr/bin"
+mirror /usr/share "$PV_PREFIX/usr/share"
+[ -e "$PV_PREFIX/usr/include" ] || $SUDO ln -s /usr/include "$PV_PREFIX/usr/include"
 echo "setup: ok (pvpython prefix $PV_PREFIX)"

@@ -1,0 +1,107 @@
+"""The `tetmesher` command line on good and bad files (run with /usr/bin/python3).
+
+Usage: TestCommandLine.py TETMESHER_EXE DATA_DIR
+Checks exit codes and messages: every format of the same mesh gives the same summary; each
+defect is named with the file and where it is.
+"""
+import os
+import subprocess
+import sys
+import tempfile
+
+exe, data = sys.argv[1], sys.argv[2]
+failures = []
+
+
+def run(*args):
+    result = subprocess.run([exe, *args], capture_output=True, text=True, timeout=120)
+    return result.returncode, result.stdout, result.stderr
+
+
+def expect(args, code, out_has=(), err_has=()):
+    rc, out, err = run(*args)
+    problems = []
+    if rc != code:
+        problems.append(f"exit {rc}, expected {code}")
+    problems += [f"stdout lacks {s!r}" for s in out_has if s not in out]
+    problems += [f"stderr lacks {s!r}" for s in err_has if s not in err]
+    if "ERR|" in err or "vtkExecutive" in err:
+        problems.append("raw VTK error output leaked to stderr")
+    if problems:
+        failures.append(f"tetmesher {' '.join(args)}: {'; '.join(problems)}\n--- stdout\n{out}--- stderr\n{err}")
+    return out
+
+
+def d(name):
+    return os.path.join(data, name)
+
+
+# Usage.
+expect(["--help"], 0, out_has=["quality MESH"])
+expect([], 2)
+expect(["frobnicate"], 2, err_has=["unknown command 'frobnicate'"])
+expect(["quality", "--help"], 0, out_has=["--size-array"])
+expect(["quality"], 2)
+expect(["quality", d("jittered-cube.vtu"), "--bogus"], 2, err_has=["unknown option '--bogus'"])
+
+# The same mesh in four formats: identical summaries (after the file name).
+summaries = []
+for name in ["jittered-cube.vtu", "jittered-cube.node", "jittered-cube.ele",
+             "jittered-cube-v2.msh", "jittered-cube-v41.msh"]:
+    out = expect(["quality", d(name)], 0, out_has=["384 tetrahedra, 125 points", "quality Q", "dihedral"])
+    summaries.append(out.split(":", 1)[-1])
+if len(set(summaries)) != 1:
+    failures.append("the formats disagree:\n" + "\n".join(summaries))
+
+out = expect(["quality", d("jittered-cube.vtu"), "--histogram"], 0, out_has=["histogram of Q"])
+bars = [line for line in out.splitlines() if line.strip()[:1].isdigit() and "-" in line.split()[0]]
+if len(bars) != 20 or sum(int(line.split()[1]) for line in bars) != 384:
+    failures.append("histogram rows do not add up to 384 tets:\n" + out)
+
+# A legacy .vtk copy, written by VTK, reads the same.
+with tempfile.TemporaryDirectory() as tmp:
+    from vtkmodules.vtkIOLegacy import vtkUnstructuredGridWriter
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+    reader = vtkXMLUnstructuredGridReader()
+    reader.SetFileName(d("jittered-cube.vtu"))
+    writer = vtkUnstructuredGridWriter()
+    writer.SetInputConnection(reader.GetOutputPort())
+    legacy = os.path.join(tmp, "cube.vtk")
+    writer.SetFileName(legacy)
+    writer.Write()
+    out = expect(["quality", legacy], 0)
+    if out.split(":", 1)[-1] != summaries[0]:
+        failures.append("legacy .vtk summary differs")
+    # Size-scaled Q with a constant size array equals the plain Q.
+    from vtkmodules.vtkCommonCore import vtkDoubleArray
+    grid = reader.GetOutput()
+    h = vtkDoubleArray()
+    h.SetName("h")
+    h.SetNumberOfTuples(grid.GetNumberOfPoints())
+    h.Fill(0.25)
+    grid.GetPointData().AddArray(h)
+    writer.SetInputData(grid)
+    writer.SetFileName(os.path.join(tmp, "sized.vtk"))
+    writer.Write()
+    out = expect(["quality", os.path.join(tmp, "sized.vtk"), "--size-array", "h"], 0)
+    if out.split(":", 1)[-1] != summaries[0]:
+        failures.append("size-scaled Q with constant h differs from Q:\n" + out)
+    expect(["quality", os.path.join(tmp, "sized.vtk"), "--size-array", "nope"], 1,
+           err_has=["'nope'"])
+
+# Bad input: exit 1, the message names the file and the defect.
+expect(["quality", d("does-not-exist.vtu")], 1, err_has=["does-not-exist.vtu: no such file"])
+expect(["quality", data], 1, err_has=["not a regular file"])
+expect(["quality", d("bad-garbage.vtu")], 1, err_has=["bad-garbage.vtu: unreadable"])
+expect(["quality", d("bad-nan-coordinate.vtu")], 1,
+       err_has=["bad-nan-coordinate.vtu", "point 7 has a non-finite coordinate"])
+expect(["quality", d("bad-no-tetrahedra.vtu")], 1, err_has=["no tetrahedra"])
+expect(["quality", d("bad-truncated.msh")], 1, err_has=["bad-truncated.msh: line 7"])
+expect(["quality", d("bad-index.ele")], 1, err_has=["bad-index.ele: line 2: vertex index out of range"])
+expect(["quality", d("make_test_meshes.py")], 1, err_has=["unknown file type '.py'"])
+
+if failures:
+    print("\n\n".join(failures))
+    print(f"TestCommandLine: {len(failures)} failure(s)")
+    sys.exit(1)
+print("TestCommandLine: all checks passed")

@@ -1,0 +1,41 @@
+"""The ParaView plugin in real pvpython: load TetMesher, apply the filter by its proxy name on
+a real mesh, and check the numbers against an independent numpy implementation.
+
+Usage: pvpython TestPluginPvpython.py PLUGIN_PATH DATA_DIR
+"""
+import os
+import sys
+
+import numpy as np
+from paraview import servermanager
+from paraview.simple import LoadPlugin, XMLUnstructuredGridReader
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+plugin, data = sys.argv[1], sys.argv[2]
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from reference_quality import tet_quality  # noqa: E402
+
+LoadPlugin(plugin, remote=False, ns=globals())
+assert "TetQuality" in globals(), "the plugin did not define the TetQuality proxy"
+
+reader = XMLUnstructuredGridReader(FileName=[os.path.join(data, "jittered-cube.vtu")])
+quality = TetQuality(Input=reader)  # noqa: F821 (defined by LoadPlugin)
+quality.NumberOfBins = 10
+quality.UpdatePipeline()
+
+mesh = servermanager.Fetch(quality, arg1=None, arg2=None, idx=0)
+points = vtk_to_numpy(mesh.GetPoints().GetData())
+tets = vtk_to_numpy(mesh.GetCells().GetConnectivityArray()).reshape(-1, 4)
+q_ref, min_ref, max_ref = tet_quality(points, tets)
+q = vtk_to_numpy(mesh.GetCellData().GetArray("Quality"))
+assert np.allclose(q, q_ref, atol=1e-12), np.abs(q - q_ref).max()
+assert np.allclose(vtk_to_numpy(mesh.GetCellData().GetArray("MinDihedralAngle")), min_ref, atol=1e-9)
+
+info = quality.GetDataInformation(0)
+assert info.GetNumberOfCells() == 384
+assert abs(mesh.GetFieldData().GetArray("QualityMinimum").GetValue(0) - q_ref.min()) < 1e-12
+
+histogram = servermanager.Fetch(quality, arg1=None, arg2=None, idx=1)
+counts = vtk_to_numpy(histogram.GetColumnByName("Count"))
+assert (counts == np.histogram(q_ref, bins=10, range=(0, 1))[0]).all(), counts
+print("TestPluginPvpython: ok, Q min %.4f mean %.4f" % (q_ref.min(), q_ref.mean()))
