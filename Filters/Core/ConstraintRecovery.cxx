@@ -67,6 +67,16 @@ private:
   int tetCost(const FlipCost& cost, TetId t) const;
   // Greedy strictly-improving flips on the pipe; true when `done()` holds at the end.
   bool flipUntil(VertexId seed, const FlipCost& cost, const std::function<bool()>& done);
+  // Collects the pipe and the flips on it; returns the best strict gain (0: none), with the
+  // best move in `best` and the cost-neutral ones appended to `neutral` when given.
+  int findMoves(VertexId seed,
+    const FlipCost& cost,
+    std::vector<TetId>& pipe,
+    FlipCandidate& best,
+    bool& bestIsFlip23,
+    std::vector<FlipCandidate>* neutral);
+  bool lookahead(VertexId seed, const FlipCost& cost, std::vector<FlipCandidate>& neutral);
+  bool shrinkCrossingShell(const std::vector<TetId>& pipe, const FlipCost& cost);
   bool insertSteinerNear(VertexId seed, const FlipCost& cost);
   bool onInputSurface(const double* x) const;
   void markConstrained(FaceRef face);
@@ -155,62 +165,178 @@ void Recovery::collectPipe(VertexId seed, const FlipCost& cost, std::vector<TetI
   }
 }
 
+int Recovery::findMoves(VertexId seed,
+  const FlipCost& cost,
+  std::vector<TetId>& pipe,
+  FlipCandidate& best,
+  bool& bestIsFlip23,
+  std::vector<FlipCandidate>* neutral)
+{
+  collectPipe(seed, cost, pipe);
+  FlipCandidate candidate;
+  int bestGain = 0;
+  best.minQuality = -1;
+  std::set<std::array<VertexId, 3>> triedFaces;
+  std::set<std::uint64_t> triedEdges;
+  auto consider = [&](bool isFlip23)
+  {
+    int gain = candidate.oldCost - candidate.newCost;
+    if (gain == 0 && neutral)
+      neutral->push_back(candidate);
+    if (gain > bestGain || (gain == bestGain && gain > 0 && candidate.minQuality > best.minQuality))
+    {
+      bestGain = gain;
+      best = candidate;
+      bestIsFlip23 = isFlip23;
+    }
+  };
+  for (TetId t : pipe)
+  {
+    TetVertices v = tetVertices(t);
+    for (int f = 0; f < 4; ++f)
+    {
+      const int* fv = kFaceVertices[f];
+      if (!triedFaces.insert(sortedTriangle(v[fv[0]], v[fv[1]], v[fv[2]])).second)
+        continue;
+      if (flip23Candidate(mesh_, t, f, cost, candidate))
+        consider(true);
+    }
+    for (int i = 0; i < 4; ++i)
+    {
+      for (int j = i + 1; j < 4; ++j)
+      {
+        std::uint64_t key = edgeKey(v[i], v[j]);
+        if (inputEdges_.count(key) || !triedEdges.insert(key).second)
+          continue;
+        if (edgeRemovalCandidate(mesh_, t, v[i], v[j], cost, candidate))
+          consider(false);
+      }
+    }
+  }
+  return bestGain;
+}
+
+bool Recovery::lookahead(VertexId seed, const FlipCost& cost, std::vector<FlipCandidate>& neutral)
+{
+  // Try the neutral moves, best shaped first; keep one only if it enables a strictly
+  // improving move (so the pair lowers the measure and the search still terminates).
+  std::stable_sort(neutral.begin(),
+    neutral.end(),
+    [](const FlipCandidate& a, const FlipCandidate& b) { return a.minQuality > b.minQuality; });
+  if (neutral.size() > 48)
+    neutral.resize(48);
+  std::vector<TetId> created, pipe, star;
+  FlipCandidate next;
+  bool nextIsFlip23 = false;
+  // Undoing a move restores the tets under other ids, so name them by their vertices.
+  std::vector<std::vector<TetVertices>> oldVertices;
+  for (const FlipCandidate& move : neutral)
+  {
+    oldVertices.emplace_back();
+    for (TetId t : move.oldTets)
+      oldVertices.back().push_back(tetVertices(t));
+  }
+  for (std::size_t m = 0; m < neutral.size(); ++m)
+  {
+    const std::vector<TetVertices>& old = oldVertices[m];
+    std::vector<TetId> oldTets;
+    for (const TetVertices& v : old)
+    {
+      vertexStar(mesh_, index_, v[0], star);
+      for (TetId t : star)
+      {
+        if (tetVertices(t) == v)
+          oldTets.push_back(t);
+      }
+    }
+    if (oldTets.size() != old.size())
+      continue;
+    replaceTets(mesh_, index_, oldTets, neutral[m].newTets, &created);
+    if (findMoves(seed, cost, pipe, next, nextIsFlip23, nullptr) > 0)
+    {
+      ++result_.neutralMoves;
+      return true;
+    }
+    std::vector<TetId> undo = created;
+    replaceTets(mesh_, index_, undo, old);
+  }
+  return false;
+}
+
 bool Recovery::flipUntil(VertexId seed, const FlipCost& cost, const std::function<bool()>& done)
 {
   std::vector<TetId> pipe;
+  std::vector<FlipCandidate> neutral;
   for (int move = 0; move < options_.maxMovesPerItem; ++move)
   {
     if (done())
       return true;
-    collectPipe(seed, cost, pipe);
-    FlipCandidate best, candidate;
-    int bestGain = 0;
+    FlipCandidate best;
     bool bestIsFlip23 = false;
-    std::set<std::array<VertexId, 3>> triedFaces;
-    std::set<std::uint64_t> triedEdges;
-    auto consider = [&](bool isFlip23)
+    neutral.clear();
+    if (findMoves(seed, cost, pipe, best, bestIsFlip23, &neutral) > 0)
     {
-      int gain = candidate.oldCost - candidate.newCost;
-      if (gain > bestGain ||
-        (gain == bestGain && gain > 0 && candidate.minQuality > best.minQuality))
-      {
-        bestGain = gain;
-        best = candidate;
-        bestIsFlip23 = isFlip23;
-      }
-    };
-    for (TetId t : pipe)
+      replaceTets(mesh_, index_, best.oldTets, best.newTets);
+      if (bestIsFlip23)
+        ++result_.flips23;
+      else
+        ++result_.edgeRemovals;
+      continue;
+    }
+    // No move helps directly: shrink the shell of an edge that cuts the item, so that a
+    // later edge removal can take it out (TetGen's flipnm idea, one level deep), or look one
+    // neutral move ahead.
+    if (shrinkCrossingShell(pipe, cost) || lookahead(seed, cost, neutral))
+      continue;
+    return false;
+  }
+  return done();
+}
+
+bool Recovery::shrinkCrossingShell(const std::vector<TetId>& pipe, const FlipCost& cost)
+{
+  FlipCandidate best, candidate;
+  bool found = false;
+  std::set<std::uint64_t> triedEdges;
+  std::vector<TetId> shell;
+  std::vector<VertexId> ring;
+  for (TetId t : pipe)
+  {
+    TetVertices v = tetVertices(t);
+    for (int i = 0; i < 4; ++i)
     {
-      TetVertices v = tetVertices(t);
-      for (int f = 0; f < 4; ++f)
+      for (int j = i + 1; j < 4; ++j)
       {
-        const int* fv = kFaceVertices[f];
-        if (!triedFaces.insert(sortedTriangle(v[fv[0]], v[fv[1]], v[fv[2]])).second)
+        std::uint64_t key = edgeKey(v[i], v[j]);
+        if (inputEdges_.count(key) || !triedEdges.insert(key).second ||
+          cost.edge(v[i], v[j]) == 0 || !edgeShell(mesh_, t, v[i], v[j], shell, ring))
           continue;
-        if (flip23Candidate(mesh_, t, f, cost, candidate))
-          consider(true);
-      }
-      for (int i = 0; i < 4; ++i)
-      {
-        for (int j = i + 1; j < 4; ++j)
+        // Face (p,q,ring[k]) separates shell[k-1] from shell[k]; a 2-3 flip of it takes
+        // ring[k] out of the ring.
+        const int n = static_cast<int>(ring.size());
+        for (int k = 0; k < n && n > 3; ++k)
         {
-          std::uint64_t key = edgeKey(v[i], v[j]);
-          if (inputEdges_.count(key) || !triedEdges.insert(key).second)
+          TetId s = shell[k];
+          int f = localIndex(mesh_, s, ring[(k + 1) % n]);
+          if (!flip23Candidate(mesh_, s, f, cost, candidate) ||
+            candidate.newCost > candidate.oldCost)
             continue;
-          if (edgeRemovalCandidate(mesh_, t, v[i], v[j], cost, candidate))
-            consider(false);
+          if (!found || candidate.newCost - candidate.oldCost < best.newCost - best.oldCost ||
+            (candidate.newCost - candidate.oldCost == best.newCost - best.oldCost &&
+              candidate.minQuality > best.minQuality))
+          {
+            best = candidate;
+            found = true;
+          }
         }
       }
     }
-    if (bestGain <= 0)
-      return false;
-    replaceTets(mesh_, index_, best.oldTets, best.newTets);
-    if (bestIsFlip23)
-      ++result_.flips23;
-    else
-      ++result_.edgeRemovals;
   }
-  return done();
+  if (!found)
+    return false;
+  replaceTets(mesh_, index_, best.oldTets, best.newTets);
+  ++result_.flips23;
+  return true;
 }
 
 bool Recovery::onInputSurface(const double* x) const
@@ -328,11 +454,27 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
       else if (missingFace < 0)
         missingFace = static_cast<int>(i);
     }
-    if (missingEdge < 0 && missingFace < 0)
+    if (recoveredCount == triangles.size())
     {
       result_.ok = true;
       return result_;
     }
+    // Flips for later items may have recovered earlier ones: look again before adding a point.
+    missingEdge = -1;
+    for (std::size_t e = 0; e < edges.size() && missingEdge < 0; ++e)
+    {
+      if (findEdge(mesh_, index_, edges[e][0], edges[e][1]) < 0)
+        missingEdge = static_cast<int>(e);
+    }
+    missingFace = -1;
+    for (std::size_t i = 0; i < triangles.size() && missingEdge < 0 && missingFace < 0; ++i)
+    {
+      const auto& t = triangles[i];
+      if (!recovered[i] && findFace(mesh_, index_, t[0], t[1], t[2]) < 0)
+        missingFace = static_cast<int>(i);
+    }
+    if (missingEdge < 0 && missingFace < 0)
+      continue; // everything is there now; the next round flags the faces
 
     std::ostringstream item;
     VertexId seed;

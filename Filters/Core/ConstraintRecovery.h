@@ -37,6 +37,7 @@ struct RecoveryResult
   std::vector<VertexId> steinerVertices; // ids of the inserted points, in insertion order
   int flips23 = 0;
   int edgeRemovals = 0;
+  int neutralMoves = 0; // flips that changed nothing measured but enabled an improving one
   int rounds = 0;
 };
 

@@ -156,8 +156,11 @@ bool edgeShell(const TetMesh& mesh,
 void replaceTets(TetMesh& mesh,
   VertexTetIndex& index,
   const std::vector<TetId>& oldTets,
-  const std::vector<TetVertices>& newTets)
+  const std::vector<TetVertices>& newTets,
+  std::vector<TetId>* created)
 {
+  if (created)
+    created->clear();
   struct BoundaryFace
   {
     std::array<VertexId, 3> key;
@@ -200,6 +203,8 @@ void replaceTets(TetMesh& mesh,
   {
     TetId t = mesh.addTet(v[0], v[1], v[2], v[3]);
     index.note(t, mesh);
+    if (created)
+      created->push_back(t);
     for (int f = 0; f < 4; ++f)
     {
       const int* fv = kFaceVertices[f];

@@ -53,10 +53,12 @@ bool edgeShell(const TetMesh& mesh,
 
 // Replaces the live tets `oldTets` by `newTets` (positively oriented, covering exactly the
 // same region). Faces shared with the rest of the mesh are glued back with their constraint
-// flags; faces between two new tets are glued to each other.
+// flags; faces between two new tets are glued to each other. The new tets' ids go to
+// `created` when given (to undo: replace them by the old vertex quadruples).
 void replaceTets(TetMesh& mesh,
   VertexTetIndex& index,
   const std::vector<TetId>& oldTets,
-  const std::vector<TetVertices>& newTets);
+  const std::vector<TetVertices>& newTets,
+  std::vector<TetId>* created = nullptr);
 
 } // namespace tetmesher

@@ -3,6 +3,7 @@
 #include "ConstraintRecovery.h"
 #include "Delaunay.h"
 #include "Regions.h"
+#include "SteinerRemoval.h"
 #include "SurfaceInput.h"
 #include "TetMesh.h"
 
@@ -82,6 +83,10 @@ MesherResult meshSurface(const double* points,
     result.error = recovery.error;
     return result;
   }
+
+  if (options.removeSteinerPoints && !recovery.steinerVertices.empty())
+    removeSteinerPoints(mesh, recovery.steinerVertices);
+  result.recoverySeconds = secondsSince(stageStart);
 
   // Stage 3: exterior removal and regions.
   stageStart = std::chrono::steady_clock::now();

@@ -25,6 +25,8 @@ struct MesherOptions
   int maxSteinerPoints = -1;
   // Bound on flips tried per missing edge/face and per round.
   int maxMovesPerItem = 500;
+  // After recovery, take out the Steiner points that flips can remove.
+  bool removeSteinerPoints = true;
 };
 
 struct MesherResult

@@ -51,10 +51,17 @@ std::vector<int> allOutward(const Surface& s)
 
 TEST(BoundaryMesh, Cube)
 {
-  Surface s = cube(1);
-  ASSERT_EQ(s.triangleCount(), 12);
-  MesherResult r = meshAndCheck(s, allOutward(s), 1);
+  // Same diagonal pattern on every face: the cube has a tetrahedralization (6 tets).
+  Surface same = box({ 0, 0, 0 }, { 1, 1, 1 }, { 1, 1, 1 }, false);
+  ASSERT_EQ(same.triangleCount(), 12);
+  MesherResult r = meshAndCheck(same, allOutward(same), 1);
   EXPECT_EQ(r.steinerPoints, 0);
+  // Alternating diagonals: an exhaustive search over the 58 tets of the cube's corners shows
+  // that no tetrahedralization of the cube has these boundary triangles, so one interior
+  // Steiner point is necessary (and enough).
+  Surface alternating = cube(1);
+  r = meshAndCheck(alternating, allOutward(alternating), 1);
+  EXPECT_EQ(r.steinerPoints, 1);
 }
 
 TEST(BoundaryMesh, SubdividedCube)
