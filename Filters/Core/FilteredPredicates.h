@@ -10,6 +10,8 @@
 
 #include "TetMesh.h"
 
+#include <cmath>
+
 namespace tetmesher
 {
 namespace predicates
@@ -34,9 +36,11 @@ constexpr double kOrient3d = (7.0 + 56.0 * kEpsilon) * kEpsilon;
 constexpr double kInsphere = (16.0 + 224.0 * kEpsilon) * kEpsilon;
 }
 
+// std::fabs compiles to a bit mask (andpd); a ternary compiles to compare-and-branch, which
+// mispredicts constantly on random signs.
 inline double absValue(double x)
 {
-  return x < 0 ? -x : x;
+  return std::fabs(x);
 }
 
 inline int orient3dFiltered(const double* a, const double* b, const double* c, const double* d)

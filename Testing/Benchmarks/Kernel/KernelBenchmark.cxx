@@ -1,0 +1,262 @@
+// Delaunay kernel benchmark: our buildDelaunay against TetGen (the `tetgen` command line,
+// run on a .node file) and CGAL's Delaunay_triangulation_3, on the same points.
+//
+// Every measurement runs in a forked child so that each one's peak RSS (getrusage) is its
+// own. Usage: TetMesherKernelBenchmark [--quick] [--no-tetgen] [--no-cgal] [--no-10m]
+#include "Delaunay.h"
+
+#ifdef TETMESHER_BENCHMARK_CGAL
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#endif
+
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace
+{
+
+struct Measurement
+{
+  double seconds = -1;
+  double tets = 0;
+  double peakRssBytes = 0; // peak resident set of the process doing the work
+  double baseRssBytes = 0; // resident set before the work started (input points etc.)
+};
+
+double nowSeconds()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double peakRss(int who)
+{
+  rusage usage{};
+  getrusage(who, &usage);
+  return static_cast<double>(usage.ru_maxrss) * 1024.0; // Linux reports kilobytes
+}
+
+// Runs `work` in a child process and returns what it measured (seconds < 0 on failure).
+template<typename Work>
+Measurement isolated(Work work)
+{
+  int fds[2];
+  if (pipe(fds) != 0)
+    return {};
+  const pid_t pid = fork();
+  if (pid == 0)
+  {
+    close(fds[0]);
+    Measurement m = work();
+    if (write(fds[1], &m, sizeof m) != static_cast<ssize_t>(sizeof m))
+      _exit(1);
+    _exit(0);
+  }
+  close(fds[1]);
+  Measurement m;
+  if (read(fds[0], &m, sizeof m) != static_cast<ssize_t>(sizeof m))
+    m = Measurement{};
+  close(fds[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return m;
+}
+
+std::vector<double> makePoints(const std::string& kind, std::size_t n)
+{
+  std::vector<double> p;
+  std::mt19937_64 gen(2024);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::normal_distribution<double> g;
+  if (kind == "grid")
+  {
+    const int m = static_cast<int>(std::lround(std::cbrt(static_cast<double>(n))));
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < m; ++j)
+        for (int k = 0; k < m; ++k)
+          p.insert(p.end(), { double(i), double(j), double(k) });
+    return p;
+  }
+  p.reserve(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (kind == "sphere")
+    {
+      double x = g(gen), y = g(gen), z = g(gen), r = std::sqrt(x * x + y * y + z * z);
+      p.insert(p.end(), { x / r, y / r, z / r });
+    }
+    else
+      p.insert(p.end(), { u(gen), u(gen), u(gen) });
+  }
+  return p;
+}
+
+Measurement runOurs(const std::vector<double>& points)
+{
+  return isolated(
+    [&points]()
+    {
+      Measurement m;
+      m.baseRssBytes = peakRss(RUSAGE_SELF);
+      const double start = nowSeconds();
+      tetmesher::TetMesh mesh;
+      mesh.coords = points;
+      const tetmesher::DelaunayResult r = tetmesher::buildDelaunay(mesh);
+      m.seconds = nowSeconds() - start;
+      if (!r.ok)
+      {
+        std::fprintf(stderr, "buildDelaunay failed: %s\n", r.error.c_str());
+        m.seconds = -1;
+      }
+      m.tets = mesh.liveTetCount();
+      m.peakRssBytes = peakRss(RUSAGE_SELF);
+      return m;
+    });
+}
+
+Measurement runTetGen(const std::vector<double>& points)
+{
+  const std::string base = "/tmp/tetmesher_bench_" + std::to_string(getpid());
+  {
+    FILE* f = std::fopen((base + ".node").c_str(), "w");
+    if (!f)
+      return {};
+    const std::size_t n = points.size() / 3;
+    std::fprintf(f, "%zu 3 0 0\n", n);
+    for (std::size_t i = 0; i < n; ++i)
+      std::fprintf(
+        f, "%zu %.17g %.17g %.17g\n", i + 1, points[3 * i], points[3 * i + 1], points[3 * i + 2]);
+    std::fclose(f);
+  }
+  Measurement m = isolated(
+    [&base]()
+    {
+      Measurement r;
+      // -Q quiet; -N -E -F: write no output files, so we time the tetrahedralization and
+      // the reading of the .node file only.
+      const std::string cmd = "tetgen -QNEF " + base + ".node > /dev/null 2>&1";
+      const double start = nowSeconds();
+      const int rc = std::system(cmd.c_str());
+      r.seconds = rc == 0 ? nowSeconds() - start : -1;
+      r.peakRssBytes = peakRss(RUSAGE_CHILDREN);
+      return r;
+    });
+  std::remove((base + ".node").c_str());
+  return m;
+}
+
+#ifdef TETMESHER_BENCHMARK_CGAL
+Measurement runCgal(const std::vector<double>& points)
+{
+  return isolated(
+    [&points]()
+    {
+      using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+      using Triangulation = CGAL::Delaunay_triangulation_3<Kernel>;
+      Measurement m;
+      m.baseRssBytes = peakRss(RUSAGE_SELF);
+      const double start = nowSeconds();
+      std::vector<Kernel::Point_3> pts;
+      pts.reserve(points.size() / 3);
+      for (std::size_t i = 0; i < points.size(); i += 3)
+        pts.emplace_back(points[i], points[i + 1], points[i + 2]);
+      Triangulation t(pts.begin(), pts.end());
+      m.seconds = nowSeconds() - start;
+      m.tets = static_cast<double>(t.number_of_finite_cells());
+      m.peakRssBytes = peakRss(RUSAGE_SELF);
+      return m;
+    });
+}
+#endif
+
+void report(const char* who, const Measurement& m, double points, double ourSeconds)
+{
+  if (m.seconds < 0)
+  {
+    std::printf("  %-8s failed or skipped\n", who);
+    return;
+  }
+  std::printf("  %-8s %8.3f s  %6.3f Mpts/s", who, m.seconds, points / m.seconds * 1e-6);
+  if (m.tets > 0)
+    std::printf("  %6.3f Mtets/s  %9.0f tets  %6.1f B/tet (peak-base)",
+      m.tets / m.seconds * 1e-6,
+      m.tets,
+      (m.peakRssBytes - m.baseRssBytes) / m.tets);
+  std::printf("  peak RSS %7.1f MiB", m.peakRssBytes / (1024.0 * 1024.0));
+  if (ourSeconds > 0 && m.seconds > 0)
+    std::printf("  time/ours %.2fx", m.seconds / ourSeconds);
+  std::printf("\n");
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  bool quick = false, tetgen = true, cgal = true, tenMillion = true;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    if (a == "--quick")
+      quick = true;
+    else if (a == "--no-tetgen")
+      tetgen = false;
+    else if (a == "--no-cgal")
+      cgal = false;
+    else if (a == "--no-10m")
+      tenMillion = false;
+    else
+    {
+      std::fprintf(stderr, "usage: %s [--quick] [--no-tetgen] [--no-cgal] [--no-10m]\n", argv[0]);
+      return 2;
+    }
+  }
+  struct Case
+  {
+    std::string kind;
+    std::size_t n;
+  };
+  std::vector<Case> cases;
+  if (quick)
+    cases = { { "uniform", 100000 }, { "sphere", 100000 }, { "grid", 27000 } };
+  else
+  {
+    cases = { { "uniform", 1000000 }, { "sphere", 1000000 }, { "grid", 1000000 } };
+    if (tenMillion)
+      cases.push_back({ "uniform", 10000000 });
+  }
+  for (const Case& c : cases)
+  {
+    const std::vector<double> points = makePoints(c.kind, c.n);
+    const double n = static_cast<double>(points.size() / 3);
+    std::printf("%s, %.0f points\n", c.kind.c_str(), n);
+    std::fflush(stdout);
+    const Measurement ours = runOurs(points);
+    report("ours", ours, n, -1);
+    std::fflush(stdout);
+    if (tetgen)
+    {
+      report("tetgen", runTetGen(points), n, ours.seconds);
+      std::fflush(stdout);
+    }
+#ifdef TETMESHER_BENCHMARK_CGAL
+    if (cgal)
+    {
+      report("cgal", runCgal(points), n, ours.seconds);
+      std::fflush(stdout);
+    }
+#else
+    (void)cgal;
+#endif
+  }
+  return 0;
+}
