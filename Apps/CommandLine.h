@@ -7,5 +7,6 @@ namespace tetmesher
 namespace cli
 {
 int RunQuality(int argc, char* argv[]);
+int RunMesh(int argc, char* argv[]);
 } // namespace cli
 } // namespace tetmesher

@@ -1,5 +1,6 @@
 // tetmesher: the command-line front end.
 //   tetmesher quality MESH [--size-array NAME] [--histogram]
+//   tetmesher mesh SURFACE -o OUT.vtu [options]
 // Exit status: 0 success, 1 bad input or failure (the message names file and defect),
 // 2 wrong usage.
 #include "CommandLine.h"
@@ -17,6 +18,8 @@ Boundary-conforming tetrahedral meshing for VTK.
 commands:
   quality MESH   print the quality summary of a tetrahedral mesh
                  (.vtu .vtk, TetGen .node/.ele, Gmsh ASCII .msh)
+  mesh SURFACE   tetrahedralize a closed triangulated surface
+                 (.stl .obj .ply .vtp .vtk .off), boundary kept exactly
 
 Run 'tetmesher COMMAND --help' for the options of a command.
 )";
@@ -34,6 +37,10 @@ int main(int argc, char* argv[])
   {
     std::fputs(kUsage, stdout);
     return 0;
+  }
+  if (command == "mesh")
+  {
+    return tetmesher::cli::RunMesh(argc - 2, argv + 2);
   }
   if (command == "quality")
   {

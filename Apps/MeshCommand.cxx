@@ -1,0 +1,178 @@
+// `tetmesher mesh SURFACE -o OUT.vtu`: tetrahedralizes a closed surface with vtkTetMesher.
+#include "CommandLine.h"
+#include "MeshFiles.h"
+#include "Report.h"
+
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkNew.h"
+#include "vtkPolyData.h"
+#include "vtkTetMesher.h"
+#include "vtkUnstructuredGrid.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <unistd.h>
+
+namespace tetmesher
+{
+namespace cli
+{
+namespace
+{
+const char* const kMeshUsage = R"(usage: tetmesher mesh SURFACE -o OUT.vtu [options]
+
+Tetrahedralizes the closed triangulated surface SURFACE. The boundary of the result is
+exactly the input triangles (same points, same coordinates); points 0..n-1 of OUT are the
+input points. Today this is the boundary mesh (George-Hecht-Saltel 1990, figure 2):
+interior points for a size field and quality optimisation are not implemented yet.
+
+SURFACE: .stl .obj .ply .vtp .vtk .off          OUT: .vtu or .vtk
+
+options:
+  -o, --output FILE     where to write the mesh (required)
+  --boundary-only       the boundary mesh alone (today's only mode)
+  --stats               print the quality summary of the result
+  --holes               enclosed shells are holes instead of regions of their own
+  --max-steiner N       budget of recovery Steiner points (default 100 + 4 per triangle)
+  --no-check            skip the input surface checks (faster on known-good surfaces)
+  -q, --quiet           no progress bar
+  -h, --help            this text
+)";
+
+// A progress bar on stderr, only when it is a terminal.
+class ProgressBar : public vtkCommand
+{
+public:
+  static ProgressBar* New() { return new ProgressBar; }
+  void Execute(vtkObject*, unsigned long, void* data) override
+  {
+    double progress = *static_cast<double*>(data);
+    int filled = static_cast<int>(progress * 30);
+    std::fprintf(stderr, "\r[%-30s] %3d%%", std::string(static_cast<std::size_t>(filled), '#').c_str(),
+      static_cast<int>(progress * 100));
+    if (progress >= 1.0)
+      std::fputs("\r\033[K", stderr);
+  }
+};
+
+double Field(vtkUnstructuredGrid* mesh, const char* name)
+{
+  vtkDataArray* array = mesh->GetFieldData()->GetArray(name);
+  return array ? array->GetComponent(0, 0) : 0.0;
+}
+} // namespace
+
+int RunMesh(int argc, char* argv[])
+{
+  std::string input, output;
+  bool stats = false, holes = false, check = true, quiet = false;
+  int maxSteiner = -1;
+  for (int i = 0; i < argc; ++i)
+  {
+    std::string arg = argv[i];
+    if (arg == "-h" || arg == "--help")
+    {
+      std::fputs(kMeshUsage, stdout);
+      return 0;
+    }
+    if ((arg == "-o" || arg == "--output") && i + 1 < argc)
+      output = argv[++i];
+    else if (arg == "--boundary-only")
+      continue;
+    else if (arg == "--stats")
+      stats = true;
+    else if (arg == "--holes")
+      holes = true;
+    else if (arg == "--no-check")
+      check = false;
+    else if (arg == "-q" || arg == "--quiet")
+      quiet = true;
+    else if (arg == "--max-steiner" && i + 1 < argc)
+    {
+      char* end = nullptr;
+      long value = std::strtol(argv[++i], &end, 10);
+      if (*end != '\0' || value < -1 || value > 1000000000)
+      {
+        std::fprintf(stderr, "tetmesher mesh: --max-steiner wants an integer >= -1, not '%s'\n",
+          argv[i]);
+        return 2;
+      }
+      maxSteiner = static_cast<int>(value);
+    }
+    else if (!arg.empty() && arg[0] == '-')
+    {
+      std::fprintf(stderr, "tetmesher mesh: unknown or incomplete option '%s'\n\n%s", arg.c_str(),
+        kMeshUsage);
+      return 2;
+    }
+    else if (input.empty())
+      input = arg;
+    else
+    {
+      std::fprintf(stderr, "tetmesher mesh: one surface at a time ('%s' is extra)\n", arg.c_str());
+      return 2;
+    }
+  }
+  if (input.empty() || output.empty())
+  {
+    std::fprintf(stderr, "tetmesher mesh: %s\n\n%s",
+      input.empty() ? "no input surface" : "no output file (-o OUT.vtu)", kMeshUsage);
+    return 2;
+  }
+  const std::string outExt = LowerExtension(output);
+  if (outExt != ".vtu" && outExt != ".vtk")
+  {
+    std::fprintf(stderr, "tetmesher mesh: %s: unknown output type '%s' (use .vtu or .vtk)\n",
+      output.c_str(), outExt.c_str());
+    return 2;
+  }
+  try
+  {
+    vtkSmartPointer<vtkPolyData> surface = ReadSurface(input);
+    vtkNew<vtkTetMesher> mesher;
+    mesher->SetInputData(surface);
+    mesher->SetEnclosedShellsAreHoles(holes);
+    mesher->SetMaximumSteinerPoints(maxSteiner);
+    mesher->SetCheckInput(check);
+    vtkNew<ProgressBar> bar;
+    if (!quiet && isatty(STDERR_FILENO))
+      mesher->AddObserver(vtkCommand::ProgressEvent, bar);
+    auto start = std::chrono::steady_clock::now();
+    std::string error = RunFilter(mesher);
+    double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!error.empty())
+    {
+      std::fprintf(stderr, "tetmesher: %s: %s\n", input.c_str(), error.c_str());
+      return 1;
+    }
+    vtkUnstructuredGrid* mesh = mesher->GetOutput();
+    WriteVolumeMesh(mesh, output);
+    std::printf("%s -> %s: %lld tetrahedra, %lld points (%d Steiner), %d region%s, Q min %.3f "
+                "mean %.3f, %.3f s\n",
+      input.c_str(), output.c_str(), static_cast<long long>(mesh->GetNumberOfCells()),
+      static_cast<long long>(mesh->GetNumberOfPoints()),
+      static_cast<int>(Field(mesh, "SteinerPointCount")),
+      static_cast<int>(Field(mesh, "RegionCount")),
+      Field(mesh, "RegionCount") == 1 ? "" : "s", Field(mesh, "QualityMinimum"),
+      Field(mesh, "QualityMean"), seconds);
+    if (stats)
+    {
+      PrintQualityReport(stdout, output, mesh);
+      PrintHistogram(stdout, mesher->GetHistogramOutput());
+    }
+  }
+  catch (const FileError& e)
+  {
+    std::fprintf(stderr, "tetmesher: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
+
+} // namespace cli
+} // namespace tetmesher

@@ -1,0 +1,294 @@
+#include "vtkTetMesher.h"
+
+#include "Mesher.h"
+#include "SurfaceDiagnosis.h"
+#include "TetQualityArrays.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCellData.h"
+#include "vtkCellType.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkTable.h"
+#include "vtkUnstructuredGrid.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <unordered_map>
+#include <sstream>
+#include <vector>
+
+vtkStandardNewMacro(vtkTetMesher);
+
+namespace
+{
+// The core orients tets with Shewchuk's orient3d > 0; VTK_TETRA wants the opposite (the
+// right-hand normal of points 0,1,2 towards point 3). Swapping points 0 and 1 converts, and
+// swaps the faces opposite them.
+constexpr int kVtkFromCore[4] = { 1, 0, 2, 3 };
+
+// A triangle as its sorted vertex ids.
+using FaceKey = std::array<std::int32_t, 3>;
+FaceKey MakeFaceKey(const std::int32_t* ids)
+{
+  FaceKey key{ ids[0], ids[1], ids[2] };
+  std::sort(key.begin(), key.end());
+  return key;
+}
+struct FaceKeyHash
+{
+  std::size_t operator()(const FaceKey& k) const
+  {
+    std::uint64_t h = static_cast<std::uint32_t>(k[0]);
+    h = h * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint32_t>(k[1]);
+    h = h * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint32_t>(k[2]);
+    return static_cast<std::size_t>(h ^ (h >> 29));
+  }
+};
+
+void AddScalar(vtkFieldData* fieldData, const char* name, double value)
+{
+  vtkNew<vtkDoubleArray> array;
+  array->SetName(name);
+  array->SetNumberOfTuples(1);
+  array->SetValue(0, value);
+  fieldData->AddArray(array);
+}
+} // namespace
+
+vtkTetMesher::vtkTetMesher()
+{
+  this->SetNumberOfOutputPorts(2);
+}
+
+vtkTetMesher::~vtkTetMesher() = default;
+
+void vtkTetMesher::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "EnclosedShellsAreHoles: " << this->EnclosedShellsAreHoles << "\n";
+  os << indent << "MaximumSteinerPoints: " << this->MaximumSteinerPoints << "\n";
+  os << indent << "RemoveSteinerPoints: " << this->RemoveSteinerPoints << "\n";
+  os << indent << "CheckInput: " << this->CheckInput << "\n";
+  os << indent << "NumberOfBins: " << this->NumberOfBins << "\n";
+}
+
+vtkTable* vtkTetMesher::GetHistogramOutput()
+{
+  return vtkTable::SafeDownCast(this->GetOutputDataObject(1));
+}
+
+int vtkTetMesher::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  return 1;
+}
+
+int vtkTetMesher::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 1)
+  {
+    info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkTable");
+    return 1;
+  }
+  return this->Superclass::FillOutputPortInformation(port, info);
+}
+
+int vtkTetMesher::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
+  vtkTable* histogram = vtkTable::GetData(outputVector, 1);
+  this->LastError.clear();
+  auto fail = [this](const std::string& message) {
+    this->LastError = message;
+    vtkErrorMacro(<< message);
+    return 0;
+  };
+
+  // --- Validate and convert the input -------------------------------------------------
+  const vtkIdType pointCount = input->GetNumberOfPoints();
+  if (pointCount > std::numeric_limits<std::int32_t>::max() / 2)
+  {
+    return fail("the input has too many points for 32-bit ids");
+  }
+  if (input->GetNumberOfStrips() > 0)
+  {
+    return fail("the input has triangle strips: convert them to triangles first "
+                "(vtkTriangleFilter)");
+  }
+  // Input cell ids of polygons come after the vertices and lines of a vtkPolyData.
+  const vtkIdType firstPolyId = input->GetNumberOfVerts() + input->GetNumberOfLines();
+  std::vector<std::int32_t> triangles;
+  triangles.reserve(static_cast<std::size_t>(3 * input->GetNumberOfPolys()));
+  {
+    auto iter = vtk::TakeSmartPointer(input->GetPolys()->NewIterator());
+    vtkIdType polyIndex = 0;
+    for (iter->GoToFirstCell(); !iter->IsDoneWithTraversal(); iter->GoToNextCell(), ++polyIndex)
+    {
+      vtkIdType size;
+      const vtkIdType* ids;
+      iter->GetCurrentCell(size, ids);
+      if (size != 3)
+      {
+        std::ostringstream message;
+        message << "input cell " << firstPolyId + polyIndex << " is a polygon with " << size
+                << " points: only triangles are meshed (triangulate with vtkTriangleFilter)";
+        return fail(message.str());
+      }
+      triangles.insert(triangles.end(), { static_cast<std::int32_t>(ids[0]),
+                                          static_cast<std::int32_t>(ids[1]),
+                                          static_cast<std::int32_t>(ids[2]) });
+    }
+  }
+  std::vector<double> coords(static_cast<std::size_t>(3 * pointCount));
+  for (vtkIdType p = 0; p < pointCount; ++p)
+  {
+    input->GetPoint(p, &coords[static_cast<std::size_t>(3 * p)]);
+  }
+  const auto triangleCount = static_cast<std::int32_t>(triangles.size() / 3);
+
+  if (this->CheckInput)
+  {
+    tetmesher::DiagnosisOptions diagnosisOptions;
+    diagnosisOptions.maxRecordsPerKind = 1000;
+    tetmesher::SurfaceDiagnosis diagnosis = tetmesher::diagnoseSurface(coords.data(),
+      static_cast<std::int32_t>(pointCount), triangles.data(), triangleCount, diagnosisOptions);
+    if (!diagnosis.ok())
+    {
+      std::string summary = diagnosis.summary(10);
+      if (firstPolyId > 0)
+      {
+        std::ostringstream note;
+        note << "\n(triangle ids count the input's polygons; add " << firstPolyId
+             << " for input cell ids)";
+        summary += note.str();
+      }
+      return fail("the input surface cannot be meshed:\n" + summary);
+    }
+  }
+  this->UpdateProgress(0.05);
+
+  // --- Mesh ------------------------------------------------------------------------------
+  tetmesher::MesherOptions options;
+  options.enclosedShellsAreHoles = this->EnclosedShellsAreHoles;
+  options.maxSteinerPoints = this->MaximumSteinerPoints;
+  options.removeSteinerPoints = this->RemoveSteinerPoints;
+  tetmesher::MesherResult result = tetmesher::meshSurface(coords.data(),
+    static_cast<std::int32_t>(pointCount), triangles.data(), triangleCount, options,
+    [this](double progress) {
+      this->UpdateProgress(0.05 + 0.85 * progress);
+      return !this->GetAbortExecute();
+    });
+  if (this->GetAbortExecute())
+  {
+    return fail("meshing was aborted");
+  }
+  if (!result.ok)
+  {
+    return fail(result.error);
+  }
+
+  // --- Convert back ------------------------------------------------------------------------
+  const vtkIdType outPointCount = static_cast<vtkIdType>(result.points.size() / 3);
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(outPointCount);
+  for (vtkIdType p = 0; p < outPointCount; ++p)
+  {
+    points->SetPoint(p, &result.points[static_cast<std::size_t>(3 * p)]);
+  }
+  output->SetPoints(points);
+
+  const vtkIdType tetCount = static_cast<vtkIdType>(result.tets.size() / 4);
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  offsets->SetNumberOfTuples(tetCount + 1);
+  connectivity->SetNumberOfTuples(4 * tetCount);
+  for (vtkIdType t = 0; t < tetCount; ++t)
+  {
+    offsets->SetValue(t, 4 * t);
+    for (int i = 0; i < 4; ++i)
+    {
+      connectivity->SetValue(
+        4 * t + i, result.tets[static_cast<std::size_t>(4 * t + kVtkFromCore[i])]);
+    }
+  }
+  offsets->SetValue(tetCount, 4 * tetCount);
+  vtkNew<vtkCellArray> cells;
+  cells->SetData(offsets, connectivity);
+  output->SetCells(VTK_TETRA, cells);
+
+  vtkNew<vtkIntArray> regionIds;
+  regionIds->SetName("RegionId");
+  regionIds->SetNumberOfTuples(tetCount);
+  for (vtkIdType t = 0; t < tetCount; ++t)
+  {
+    regionIds->SetValue(t, result.regionIds[static_cast<std::size_t>(t)]);
+  }
+  output->GetCellData()->AddArray(regionIds);
+
+  vtkNew<vtkIdTypeArray> inputFaces;
+  inputFaces->SetName("InputFaceIds");
+  inputFaces->SetNumberOfComponents(4);
+  inputFaces->SetNumberOfTuples(tetCount);
+  inputFaces->Fill(-1);
+  // Every tet face lying on an input triangle (both sides of an interface triangle).
+  std::unordered_map<FaceKey, std::int32_t, FaceKeyHash> triangleOfFace;
+  triangleOfFace.reserve(static_cast<std::size_t>(triangleCount));
+  for (std::int32_t tri = 0; tri < triangleCount; ++tri)
+  {
+    triangleOfFace.emplace(MakeFaceKey(&triangles[3 * static_cast<std::size_t>(tri)]), tri);
+  }
+  for (vtkIdType t = 0; t < tetCount; ++t)
+  {
+    const std::int32_t* tet = &result.tets[static_cast<std::size_t>(4 * t)];
+    for (int f = 0; f < 4; ++f)
+    {
+      std::int32_t face[3];
+      for (int k = 0, n = 0; k < 4; ++k)
+      {
+        if (k != f)
+        {
+          face[n++] = tet[k];
+        }
+      }
+      auto found = triangleOfFace.find(MakeFaceKey(face));
+      if (found != triangleOfFace.end())
+      {
+        inputFaces->SetTypedComponent(t, kVtkFromCore[f], firstPolyId + found->second);
+      }
+    }
+  }
+  output->GetCellData()->AddArray(inputFaces);
+
+  // Quality with the same code as vtkTetQuality.
+  tetmesher::vtkglue::TetQualityResult quality;
+  std::string qualityError;
+  if (!tetmesher::vtkglue::ComputeTetQuality(output, nullptr, this->NumberOfBins, quality, qualityError))
+  {
+    return fail("quality of the result: " + qualityError);
+  }
+  tetmesher::vtkglue::AttachQualityArrays(quality, output->GetCellData());
+  vtkFieldData* fieldData = output->GetFieldData();
+  tetmesher::vtkglue::AttachQualitySummary(quality.Summary, fieldData);
+  AddScalar(fieldData, "SteinerPointCount", result.steinerPoints);
+  AddScalar(fieldData, "RegionCount", result.regionCount);
+  AddScalar(fieldData, "MeshingSeconds", result.totalSeconds);
+  tetmesher::vtkglue::FillHistogramTable(quality.Histogram, histogram);
+  tetmesher::vtkglue::AttachQualitySummary(quality.Summary, histogram->GetFieldData());
+  this->UpdateProgress(1.0);
+  return 1;
+}
