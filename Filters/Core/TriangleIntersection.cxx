@@ -8,11 +8,32 @@
 namespace tetmesher
 {
 
-using predicates::orient2d;
-using predicates::orient3d;
-
 namespace
 {
+
+// The exact predicates are fast when the answer is not zero (the floating-point filter
+// decides) and slow when it is exactly zero (full expansion arithmetic). Surfaces from CAD and
+// from extrusions are full of exactly coplanar points in axis-aligned planes: recognise those
+// zeros directly. Both shortcuts are exact.
+int orient3d(const double* a, const double* b, const double* c, const double* d)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k])
+      return 0; // all four in the plane x_k = const
+  }
+  return predicates::orient3d(a, b, c, d);
+}
+
+int orient2d(const double* a, const double* b, const double* c, int dropAxis)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    if (k != dropAxis && a[k] == b[k] && a[k] == c[k])
+      return 0; // all three on a line x_k = const of the projection plane
+  }
+  return predicates::orient2d(a, b, c, dropAxis);
+}
 
 // Closed 2D segments pq and rs (projection dropping `axis`) share a point.
 bool segmentsIntersect2D(const double* p,
