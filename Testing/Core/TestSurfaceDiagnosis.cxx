@@ -485,6 +485,28 @@ TEST(SurfaceDiagnosis, SortAroundEdge)
   EXPECT_EQ(sortAroundEdge(v, u, w), reversed);
 }
 
+TEST(SurfaceDiagnosis, TwoCubesEachWithItsOwnCopyOfTheSharedFace)
+{
+  // The common mistake for multi-material input: the interface written twice (once per cube,
+  // opposite orientations). Reported as duplicated triangles, nothing else.
+  Surface s = voxels({ { 0, 0, 0 } });
+  const Surface b = voxels({ { 1, 0, 0 } });
+  std::map<std::array<double, 3>, std::int32_t> ids;
+  for (std::int32_t i = 0; i < s.pointCount(); ++i)
+    ids[{ s.pts[3 * i], s.pts[3 * i + 1], s.pts[3 * i + 2] }] = i;
+  std::vector<std::int32_t> map(b.pointCount());
+  for (std::int32_t i = 0; i < b.pointCount(); ++i)
+  {
+    const std::array<double, 3> p = { b.pts[3 * i], b.pts[3 * i + 1], b.pts[3 * i + 2] };
+    map[i] = ids.count(p) ? ids[p] : (ids[p] = s.addPoint(p[0], p[1], p[2]));
+  }
+  for (std::int32_t t : b.tris)
+    s.tris.push_back(map[t]);
+  const SurfaceDiagnosis d = s.diagnose();
+  EXPECT_EQ(d.count(SurfaceDefect::DuplicateTriangle), 2) << d.summary();
+  EXPECT_EQ(d.defects.size(), 2u) << d.summary();
+}
+
 TEST(SurfaceDiagnosis, CubeSplitByInternalWallIsValid)
 {
   // The diagonal section x=y (points 0,3,7,4) splits the cube into two prisms: its boundary
