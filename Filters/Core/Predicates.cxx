@@ -10,6 +10,8 @@
 #include "FilteredPredicates.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <vector>
 
 namespace tetmesher
@@ -117,10 +119,175 @@ int sign(Exp e)
   return expansionSign(e.length, e.data);
 }
 
+// Second filter stage in x87 extended precision (64-bit significand on x86-64 Linux): the
+// same evaluation and the same a-priori bound as the double filter, with eps = 2^-64. The
+// inputs are doubles, so they convert exactly; the bound covers every rounding after that.
+// Nearly co-spherical input (points on a sphere) fails the double filter constantly and is
+// decided here at a fraction of the cost of expansion arithmetic. Returns 0 when uncertain.
+// Where long double is no wider than double, the stage is skipped.
+constexpr bool kHasExtendedStage = std::numeric_limits<long double>::digits >= 64;
+constexpr long double kEpsilonExtended = 1.0L / 18446744073709551616.0L; // 2^-64
+constexpr long double kOrient3dExtendedBound = (7.0L + 56.0L * kEpsilonExtended) * kEpsilonExtended;
+constexpr long double kInsphereExtendedBound =
+  (16.0L + 224.0L * kEpsilonExtended) * kEpsilonExtended;
+
+int orient3dExtended(const double* a, const double* b, const double* c, const double* d)
+{
+  using L = long double;
+  const L adx = L(a[0]) - d[0], bdx = L(b[0]) - d[0], cdx = L(c[0]) - d[0];
+  const L ady = L(a[1]) - d[1], bdy = L(b[1]) - d[1], cdy = L(c[1]) - d[1];
+  const L adz = L(a[2]) - d[2], bdz = L(b[2]) - d[2], cdz = L(c[2]) - d[2];
+  const L bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
+  const L cdxady = cdx * ady, adxcdy = adx * cdy;
+  const L adxbdy = adx * bdy, bdxady = bdx * ady;
+  const L det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+  const L permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * std::fabs(adz) +
+    (std::fabs(cdxady) + std::fabs(adxcdy)) * std::fabs(bdz) +
+    (std::fabs(adxbdy) + std::fabs(bdxady)) * std::fabs(cdz);
+  const L bound = kOrient3dExtendedBound * permanent;
+  return det > bound ? 1 : (-det > bound ? -1 : 0);
+}
+
+int insphereExtended(const double* a,
+  const double* b,
+  const double* c,
+  const double* d,
+  const double* e)
+{
+  using L = long double;
+  const L aex = L(a[0]) - e[0], bex = L(b[0]) - e[0], cex = L(c[0]) - e[0], dex = L(d[0]) - e[0];
+  const L aey = L(a[1]) - e[1], bey = L(b[1]) - e[1], cey = L(c[1]) - e[1], dey = L(d[1]) - e[1];
+  const L aez = L(a[2]) - e[2], bez = L(b[2]) - e[2], cez = L(c[2]) - e[2], dez = L(d[2]) - e[2];
+  const L aexbey = aex * bey, bexaey = bex * aey, bexcey = bex * cey, cexbey = cex * bey;
+  const L cexdey = cex * dey, dexcey = dex * cey, dexaey = dex * aey, aexdey = aex * dey;
+  const L aexcey = aex * cey, cexaey = cex * aey, bexdey = bex * dey, dexbey = dex * bey;
+  const L ab = aexbey - bexaey, bc = bexcey - cexbey, cd = cexdey - dexcey;
+  const L da = dexaey - aexdey, ac = aexcey - cexaey, bd = bexdey - dexbey;
+  const L abc = aez * bc - bez * ac + cez * ab;
+  const L bcd = bez * cd - cez * bd + dez * bc;
+  const L cda = cez * da + dez * ac + aez * cd;
+  const L dab = dez * ab + aez * bd + bez * da;
+  const L alift = aex * aex + aey * aey + aez * aez;
+  const L blift = bex * bex + bey * bey + bez * bez;
+  const L clift = cex * cex + cey * cey + cez * cez;
+  const L dlift = dex * dex + dey * dey + dez * dez;
+  const L det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+  auto f = [](L x) { return std::fabs(x); };
+  const L permanent = ((f(cexdey) + f(dexcey)) * f(bez) + (f(dexbey) + f(bexdey)) * f(cez) +
+                        (f(bexcey) + f(cexbey)) * f(dez)) *
+      alift +
+    ((f(dexaey) + f(aexdey)) * f(cez) + (f(aexcey) + f(cexaey)) * f(dez) +
+      (f(cexdey) + f(dexcey)) * f(aez)) *
+      blift +
+    ((f(aexbey) + f(bexaey)) * f(dez) + (f(bexdey) + f(dexbey)) * f(aez) +
+      (f(dexaey) + f(aexdey)) * f(bez)) *
+      clift +
+    ((f(bexcey) + f(cexbey)) * f(aez) + (f(cexaey) + f(aexcey)) * f(bez) +
+      (f(aexbey) + f(bexaey)) * f(cez)) *
+      dlift;
+  const L bound = kInsphereExtendedBound * permanent;
+  return det > bound ? 1 : (-det > bound ? -1 : 0);
+}
+
+// Third stage, for exactly degenerate input on a lattice (grids, integer coordinates, or
+// any coordinates whose differences are small multiples of a common power of two): if
+// every coordinate difference is exact and, after an exact power-of-two scaling, an integer
+// below 2^bits, then every intermediate value of the determinant is an integer below 2^64
+// and the extended-precision evaluation is exact, zero included. Bits: insphere needs
+// 72 * 2^(5 bits) < 2^64 (bits = 11); orient3d needs 6 * 2^(3 bits) < 2^64 (bits = 20).
+bool scaledIntegerDifferences(const double* const* points,
+  int count,
+  const double* origin,
+  int bits,
+  long double (*out)[3])
+{
+  double diff[5][3];
+  double maxAbs = 0;
+  for (int i = 0; i < count; ++i)
+    for (int k = 0; k < 3; ++k)
+    {
+      double x, y;
+      twoDiff(points[i][k], origin[k], x, y);
+      if (y != 0.0)
+        return false;
+      diff[i][k] = x;
+      maxAbs = std::max(maxAbs, std::fabs(x));
+    }
+  int exponent = 0;
+  std::frexp(maxAbs, &exponent); // maxAbs < 2^exponent
+  // Multiplying by a power of two is exact unless it overflows or underflows, which the
+  // round trip detects.
+  const double scale = std::ldexp(1.0, bits - exponent);
+  const double inverse = std::ldexp(1.0, exponent - bits);
+  for (int i = 0; i < count; ++i)
+    for (int k = 0; k < 3; ++k)
+    {
+      const double s = diff[i][k] * scale;
+      if (s != std::trunc(s) || s * inverse != diff[i][k])
+        return false;
+      out[i][k] = s;
+    }
+  return true;
+}
+
+// 0 when not applicable, else 1 + (sign + 1): decodes with decodeLattice.
+int orient3dLattice(const double* a, const double* b, const double* c, const double* d)
+{
+  const double* const pts[3] = { a, b, c };
+  long double m[3][3];
+  if (!scaledIntegerDifferences(pts, 3, d, 20, m))
+    return 0;
+  const long double det = m[0][2] * (m[1][0] * m[2][1] - m[2][0] * m[1][1]) +
+    m[1][2] * (m[2][0] * m[0][1] - m[0][0] * m[2][1]) +
+    m[2][2] * (m[0][0] * m[1][1] - m[1][0] * m[0][1]);
+  return 2 + (det > 0) - (det < 0);
+}
+
+int insphereLattice(const double* a,
+  const double* b,
+  const double* c,
+  const double* d,
+  const double* e)
+{
+  const double* const pts[4] = { a, b, c, d };
+  long double m[4][3];
+  if (!scaledIntegerDifferences(pts, 4, e, 11, m))
+    return 0;
+  using L = long double;
+  const L ab = m[0][0] * m[1][1] - m[1][0] * m[0][1];
+  const L bc = m[1][0] * m[2][1] - m[2][0] * m[1][1];
+  const L cd = m[2][0] * m[3][1] - m[3][0] * m[2][1];
+  const L da = m[3][0] * m[0][1] - m[0][0] * m[3][1];
+  const L ac = m[0][0] * m[2][1] - m[2][0] * m[0][1];
+  const L bd = m[1][0] * m[3][1] - m[3][0] * m[1][1];
+  const L abc = m[0][2] * bc - m[1][2] * ac + m[2][2] * ab;
+  const L bcd = m[1][2] * cd - m[2][2] * bd + m[3][2] * bc;
+  const L cda = m[2][2] * da + m[3][2] * ac + m[0][2] * cd;
+  const L dab = m[3][2] * ab + m[0][2] * bd + m[1][2] * da;
+  L lift[4];
+  for (int i = 0; i < 4; ++i)
+    lift[i] = m[i][0] * m[i][0] + m[i][1] * m[i][1] + m[i][2] * m[i][2];
+  const L det = (lift[3] * abc - lift[2] * dab) + (lift[1] * cda - lift[0] * bcd);
+  return 2 + (det > 0) - (det < 0);
+}
+
+inline int decodeLattice(int code)
+{
+  return code - 2;
+}
+
 } // namespace
 
 int orient3dExact(const double* a, const double* b, const double* c, const double* d)
 {
+  if (kHasExtendedStage)
+  {
+    if (const int code = orient3dLattice(a, b, c, d))
+      return decodeLattice(code);
+    const int s = orient3dExtended(a, b, c, d);
+    if (s != 0)
+      return s;
+  }
   Arena& ar = arena();
   ar.reset();
   const Exp adx = difference(ar, a[0], d[0]), bdx = difference(ar, b[0], d[0]),
@@ -144,6 +311,14 @@ int insphereExact(const double* a,
   const double* d,
   const double* e)
 {
+  if (kHasExtendedStage)
+  {
+    if (const int code = insphereLattice(a, b, c, d, e))
+      return decodeLattice(code);
+    const int s = insphereExtended(a, b, c, d, e);
+    if (s != 0)
+      return s;
+  }
   Arena& ar = arena();
   ar.reset();
   const Exp aex = difference(ar, a[0], e[0]), bex = difference(ar, b[0], e[0]),
