@@ -51,6 +51,9 @@ struct InsertionWorkspace
   std::vector<std::uint32_t> vertexStamp; // checked mode only
   std::uint32_t stamp = 0;
   std::uint64_t rng = 0x2545F4914F6CDD1DULL; // fixed seed: deterministic walks
+  // Ids that define the symbolic perturbation, when the mesh being built uses other ids
+  // (buildDelaunay renumbers the points in insertion order); nullptr: the ids themselves.
+  const VertexId* perturbationIds = nullptr;
 
   InsertionWorkspace()
   {
@@ -312,7 +315,8 @@ void growCavity(TetMesh& mesh, VertexId v, TetId start, InsertionWorkspace& ws)
         else if (!constrained && !(flags[u] & kRejected))
         {
           const VertexId* uv = tets + 4 * static_cast<std::size_t>(u);
-          if (predicates::insphereSoSFiltered(coords, uv[0], uv[1], uv[2], uv[3], v) > 0)
+          if (predicates::insphereSoSFiltered(
+                coords, uv[0], uv[1], uv[2], uv[3], v, ws.perturbationIds) > 0)
           {
             flags[u] |= kInCavity;
             ws.cavity.push_back(u);
@@ -358,6 +362,16 @@ TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
   }
   const std::size_t mask = ws.edgeTable.size() - 1;
   ws.usedSlots.clear();
+  // Grow the tet arrays by 1/4 when full rather than letting std::vector double them: the
+  // arrays are most of the memory, and doubling would cost up to 2x (3x during the copy).
+  if (mesh.freeTets.size() + (mesh.tets.capacity() - mesh.tets.size()) / 4 < faceCount)
+  {
+    const std::size_t tets = mesh.tets.size() / 4 + faceCount;
+    const std::size_t grown = tets + tets / 4;
+    mesh.tets.reserve(4 * grown);
+    mesh.neighbors.reserve(4 * grown);
+    mesh.flags.reserve(grown);
+  }
 
   // Face of the new tet (a,b,c,v) that contains edge (from,to) of the boundary triangle.
   constexpr int kEdgeFace[3] = { 2, 0, 1 }; // edges ab, bc, ca
@@ -541,9 +555,9 @@ DelaunayResult buildDelaunay(TetMesh& mesh, const DelaunayOptions& options)
     diagonal = std::max({ 1.0, std::abs(lo[0]), std::abs(lo[1]), std::abs(lo[2]) });
   const double margin = std::max(options.boxEnlargement, 0.01) * diagonal;
 
-  // Reserve for the expected ~6.5 tets per point so the arrays never reallocate (and never
-  // transiently double the memory) during insertion.
-  const std::size_t expectedTets = static_cast<std::size_t>(n) * 13 / 2 + 64;
+  // Reserve for the expected ~6.8 tets per point (uniform random points) so the arrays never
+  // reallocate (and never transiently double the memory) during insertion.
+  const std::size_t expectedTets = static_cast<std::size_t>(n) * 7 + 64;
   mesh.coords.reserve(3 * (static_cast<std::size_t>(n) + 8));
   mesh.tets.reserve(4 * expectedTets);
   mesh.neighbors.reserve(4 * expectedTets);
@@ -585,26 +599,50 @@ DelaunayResult buildDelaunay(TetMesh& mesh, const DelaunayOptions& options)
         }
   glueByMatching(mesh, box, boxCount);
 
-  const std::vector<VertexId> order = brioOrder(mesh.coords.data(), n);
+  // Insertion order, and renumbering: the points are copied in insertion order so that the
+  // coordinates of neighbouring tets are neighbours in memory (input order is often random,
+  // and then every in-sphere test would miss the cache). The symbolic perturbation still
+  // uses the caller's ids, so the mesh is the same as without renumbering; the tets are
+  // mapped back to the caller's ids at the end.
+  std::vector<VertexId> originalId = brioOrder(mesh.coords.data(), n);
+  for (VertexId v = n; v < n + 8; ++v)
+    originalId.push_back(v);
+  std::vector<double> inputCoords = std::move(mesh.coords);
+  mesh.coords.assign(inputCoords.size(), 0.0);
+  for (std::size_t i = 0; i < originalId.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      mesh.coords[3 * i + k] = inputCoords[3 * static_cast<std::size_t>(originalId[i]) + k];
+
   InsertionWorkspace ws;
+  ws.perturbationIds = originalId.data();
   TetId hint = box[0];
-  for (VertexId v : order)
+  for (VertexId v = 0; v < n; ++v)
   {
     const InsertResult r = insertImpl<false>(mesh, v, hint, ws);
     if (r.status == InsertStatus::Inserted)
       hint = r.tet;
     else if (r.status == InsertStatus::Duplicate)
     {
-      result.duplicates.push_back(v);
-      result.duplicateOf.push_back(r.existing);
+      result.duplicates.push_back(originalId[static_cast<std::size_t>(v)]);
+      result.duplicateOf.push_back(originalId[static_cast<std::size_t>(r.existing)]);
       hint = r.tet;
     }
     else
     {
-      result.error = "vertex " + std::to_string(v) + " could not be inserted";
+      result.error = "vertex " + std::to_string(originalId[static_cast<std::size_t>(v)]) +
+        " could not be inserted";
+      mesh.coords = std::move(inputCoords);
       return result;
     }
   }
+  mesh.coords = std::move(inputCoords);
+  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+    if (!mesh.isDeleted(t))
+      for (int k = 0; k < 4; ++k)
+      {
+        VertexId& id = mesh.tets[4 * static_cast<std::size_t>(t) + k];
+        id = originalId[static_cast<std::size_t>(id)];
+      }
 
   if (options.validate)
   {

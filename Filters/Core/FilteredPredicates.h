@@ -116,12 +116,16 @@ inline int insphereFiltered(const double* a,
 }
 
 // insphereSoS on raw coordinates (coords = mesh.coords.data()), for hot loops.
+// `perturbationIds`, when given, maps the ids used here to the ids that define the symbolic
+// perturbation (the Delaunay builder works on a renumbered copy of the points but must
+// perturb by the caller's ids); nullptr means the ids themselves.
 inline int insphereSoSFiltered(const double* coords,
   VertexId a,
   VertexId b,
   VertexId c,
   VertexId d,
-  VertexId e)
+  VertexId e,
+  const VertexId* perturbationIds = nullptr)
 {
   const double* pa = coords + 3 * static_cast<std::size_t>(a);
   const double* pb = coords + 3 * static_cast<std::size_t>(b);
@@ -132,6 +136,15 @@ inline int insphereSoSFiltered(const double* coords,
   if (s != 0)
     return s;
   const double* const points[5] = { pa, pb, pc, pd, pe };
+  if (perturbationIds)
+  {
+    const VertexId ids[5] = { perturbationIds[a],
+      perturbationIds[b],
+      perturbationIds[c],
+      perturbationIds[d],
+      perturbationIds[e] };
+    return insphereTieBreak(points, ids);
+  }
   const VertexId ids[5] = { a, b, c, d, e };
   return insphereTieBreak(points, ids);
 }

@@ -108,6 +108,7 @@ void hilbertSort(const double* coords, VertexId* first, VertexId* last)
     VertexId id;
   };
   std::vector<Keyed> keyed(static_cast<std::size_t>(last - first));
+  const double maxCell = std::ldexp(1.0, kBits) - 1.0;
   for (std::size_t i = 0; i < keyed.size(); ++i)
   {
     const VertexId v = first[i];
@@ -115,7 +116,7 @@ void hilbertSort(const double* coords, VertexId* first, VertexId* last)
     for (int k = 0; k < 3; ++k)
     {
       const double c = (coords[3 * static_cast<std::size_t>(v) + k] - box.lo[k]) * box.scale;
-      g[k] = static_cast<std::uint32_t>(std::min(c, std::ldexp(1.0, kBits) - 1.0));
+      g[k] = static_cast<std::uint32_t>(std::min(c, maxCell));
     }
     keyed[i] = { hilbertIndex(g[0], g[1], g[2], kBits), v };
   }
