@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -89,6 +90,7 @@ private:
   std::vector<std::array<double, 6>> triangleBoxes_;
   std::unique_ptr<InsertionWorkspace, WorkspaceDeleter> workspace_{ createInsertionWorkspace() };
   RecoveryResult result_;
+  std::map<std::size_t, int> steinerPerItem_; // edges by index, then triangles after them
 };
 
 FlipCost Recovery::edgeCost(VertexId a, VertexId b) const
@@ -418,15 +420,12 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
       result_.error = "aborted during boundary recovery";
       return result_;
     }
-    int missingEdge = -1;
     for (std::size_t e = 0; e < edges.size(); ++e)
     {
       VertexId a = edges[e][0], b = edges[e][1];
       auto exists = [&] { return findEdge(mesh_, index_, a, b) >= 0; };
-      if (!flipUntil(a, edgeCost(a, b), exists) && missingEdge < 0)
-        missingEdge = static_cast<int>(e);
+      flipUntil(a, edgeCost(a, b), exists);
     }
-    int missingFace = -1;
     for (std::size_t i = 0; i < triangles.size(); ++i)
     {
       if (recovered[i])
@@ -451,60 +450,55 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
         recovered[i] = 1;
         ++recoveredCount;
       }
-      else if (missingFace < 0)
-        missingFace = static_cast<int>(i);
     }
     if (recoveredCount == triangles.size())
     {
       result_.ok = true;
       return result_;
     }
-    // Flips for later items may have recovered earlier ones: look again before adding a point.
-    missingEdge = -1;
-    for (std::size_t e = 0; e < edges.size() && missingEdge < 0; ++e)
+    // Flips are stuck: one Steiner point near each item still missing (missing edges first,
+    // since faces need their edges), then the next round retries the flips. Items are looked
+    // up again just before, as work on other items may have recovered them meanwhile.
+    int inserted = 0;
+    auto steinerFor =
+      [&](std::size_t key, const std::string& name, VertexId seed, const FlipCost& cost)
     {
-      if (findEdge(mesh_, index_, edges[e][0], edges[e][1]) < 0)
-        missingEdge = static_cast<int>(e);
+      int& count = steinerPerItem_[key];
+      if (count >= options_.maxSteinerPerItem)
+        result_.error = "could not recover " + name + " with " + std::to_string(count) +
+          " Steiner points near it (self-intersecting or nearly degenerate input?)";
+      else if (static_cast<int>(result_.steinerVertices.size()) >= options_.maxSteinerPoints)
+        result_.error = "could not recover " + name + " within the budget of " +
+          std::to_string(options_.maxSteinerPoints) + " Steiner points";
+      else if (!insertSteinerNear(seed, cost))
+        result_.error = "could not recover " + name + ": no Steiner point could be placed near it";
+      else
+      {
+        ++count;
+        ++inserted;
+        return true;
+      }
+      return false;
+    };
+    for (std::size_t e = 0; e < edges.size(); ++e)
+    {
+      VertexId a = edges[e][0], b = edges[e][1];
+      if (findEdge(mesh_, index_, a, b) >= 0)
+        continue;
+      std::ostringstream name;
+      name << "input edge (" << a << "," << b << ") of triangle " << surface_.edgeFirstTriangle[e];
+      if (!steinerFor(e, name.str(), a, edgeCost(a, b)))
+        return result_;
     }
-    missingFace = -1;
-    for (std::size_t i = 0; i < triangles.size() && missingEdge < 0 && missingFace < 0; ++i)
+    for (std::size_t i = 0; i < triangles.size() && inserted == 0; ++i)
     {
       const auto& t = triangles[i];
-      if (!recovered[i] && findFace(mesh_, index_, t[0], t[1], t[2]) < 0)
-        missingFace = static_cast<int>(i);
-    }
-    if (missingEdge < 0 && missingFace < 0)
-      continue; // everything is there now; the next round flags the faces
-
-    std::ostringstream item;
-    VertexId seed;
-    FlipCost cost;
-    if (missingEdge >= 0)
-    {
-      const auto& e = edges[missingEdge];
-      item << "input edge (" << e[0] << "," << e[1] << ") of triangle "
-           << surface_.edgeFirstTriangle[missingEdge];
-      seed = e[0];
-      cost = edgeCost(e[0], e[1]);
-    }
-    else
-    {
-      const auto& t = triangles[missingFace];
-      item << "input triangle " << missingFace << " (" << t[0] << "," << t[1] << "," << t[2] << ")";
-      seed = t[0];
-      cost = faceCost(t);
-    }
-    if (static_cast<int>(result_.steinerVertices.size()) >= options_.maxSteinerPoints)
-    {
-      result_.error = "could not recover " + item.str() + " within the budget of " +
-        std::to_string(options_.maxSteinerPoints) + " Steiner points";
-      return result_;
-    }
-    if (!insertSteinerNear(seed, cost))
-    {
-      result_.error = "could not recover " + item.str() +
-        ": no Steiner point could be placed near it (intersecting input?)";
-      return result_;
+      if (recovered[i] || findFace(mesh_, index_, t[0], t[1], t[2]) >= 0)
+        continue;
+      std::ostringstream name;
+      name << "input triangle " << i << " (" << t[0] << "," << t[1] << "," << t[2] << ")";
+      if (!steinerFor(edges.size() + i, name.str(), t[0], faceCost(t)))
+        return result_;
     }
   }
 }

@@ -4,6 +4,7 @@
 #include "Delaunay.h"
 #include "Regions.h"
 #include "SteinerRemoval.h"
+#include "SurfaceDiagnosis.h"
 #include "SurfaceInput.h"
 #include "TetMesh.h"
 
@@ -36,6 +37,24 @@ MesherResult meshSurface(const double* points,
   result.error = buildSurfaceInput(points, pointCount, triangles, triangleCount, surface);
   if (!result.error.empty())
     return result;
+  if (options.validateInput)
+  {
+    // Refuse what recovery cannot mesh (self-intersections, coincident points, fins) with a
+    // message naming the ids. Orientation does not matter to the mesher.
+    SurfaceDiagnosis diagnosis = diagnoseSurface(points, pointCount, triangles, triangleCount);
+    SurfaceDiagnosis errors;
+    for (const DefectRecord& d : diagnosis.defects)
+    {
+      if (!isWarning(d.kind) && d.kind != SurfaceDefect::InconsistentOrientation)
+        errors.defects.push_back(d);
+    }
+    std::string defects = errors.defects.empty() ? std::string() : errors.summary();
+    if (!defects.empty())
+    {
+      result.error = "invalid input surface: " + defects;
+      return result;
+    }
+  }
   if (!report(0.0))
   {
     result.error = "aborted";

@@ -27,6 +27,9 @@ struct MesherOptions
   int maxMovesPerItem = 500;
   // After recovery, take out the Steiner points that flips can remove.
   bool removeSteinerPoints = true;
+  // Run SurfaceDiagnosis first (self-intersections etc.) and refuse defective input with its
+  // message. Without it, such input fails later in recovery, still naming an item.
+  bool validateInput = true;
 };
 
 struct MesherResult

@@ -189,3 +189,19 @@ TEST(BoundaryMesh, AbortIsHonoured)
     [](double) { return false; });
   EXPECT_FALSE(r.ok);
 }
+
+TEST(BoundaryMesh, RefusesSelfIntersectingSurface)
+{
+  Surface s = cube(1);
+  s.append(box({ 0.5, 0.5, 0.5 }, { 1.5, 1.5, 1.5 }, { 1, 1, 1 }));
+  MesherResult r =
+    meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount());
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("intersect"), std::string::npos) << r.error;
+  // Without the diagnosis, recovery must still fail in bounded time and name an item.
+  MesherOptions options;
+  options.validateInput = false;
+  r = meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), options);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("could not recover input"), std::string::npos) << r.error;
+}
