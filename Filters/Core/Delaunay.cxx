@@ -37,8 +37,12 @@ struct InsertionWorkspace
     FaceRef outside;  // the face of the tet beyond, or kNoNeighbor
     bool constrained; // constrained flag carried over to the new tet
   };
+  // Slot of the edge table that glues the cone's tets: a directed boundary edge, the face of
+  // the new tet that contains it, and the insertion it belongs to (stale slots are empty,
+  // so the table never needs clearing).
   struct EdgeSlot
   {
+    std::uint32_t stamp;
     VertexId from, to;
     FaceRef face;
   };
@@ -46,8 +50,8 @@ struct InsertionWorkspace
   std::vector<TetId> cavity;
   std::vector<TetId> rejected;
   std::vector<BoundaryFace> boundary;
-  std::vector<EdgeSlot> edgeTable = std::vector<EdgeSlot>(256, EdgeSlot{ -1, -1, 0 });
-  std::vector<int> usedSlots;
+  std::vector<EdgeSlot> edgeTable = std::vector<EdgeSlot>(512, EdgeSlot{ 0, -1, -1, 0 });
+  std::uint32_t edgeStamp = 0;
   std::vector<std::uint32_t> vertexStamp; // checked mode only
   std::uint32_t stamp = 0;
   std::uint64_t rng = 0x2545F4914F6CDD1DULL; // fixed seed: deterministic walks
@@ -60,7 +64,6 @@ struct InsertionWorkspace
     cavity.reserve(256);
     rejected.reserve(256);
     boundary.reserve(512);
-    usedSlots.reserve(1024);
   }
 
   unsigned nextRandom()
@@ -341,27 +344,37 @@ void growCavity(TetMesh& mesh, VertexId v, TetId start, InsertionWorkspace& ws)
   }
 }
 
+// Symmetric in (a, b), so that both directions of an edge probe the same chain. (Not a ^ b:
+// after renumbering, nearby vertices have nearby ids and their xors collide constantly.)
 inline std::size_t edgeHash(VertexId a, VertexId b, std::size_t mask)
 {
-  std::uint64_t h = static_cast<std::uint32_t>(a) * 0x9E3779B97F4A7C15ULL ^
-    static_cast<std::uint32_t>(b) * 0xC2B2AE3D27D4EB4FULL;
-  return static_cast<std::size_t>(h ^ (h >> 29)) & mask;
+  const std::uint64_t lo = static_cast<std::uint32_t>(a < b ? a : b);
+  const std::uint64_t hi = static_cast<std::uint32_t>(a < b ? b : a);
+  const std::uint64_t h = (lo * 0x9E3779B97F4A7C15ULL) ^ (hi * 0xC2B2AE3D27D4EB4FULL);
+  return static_cast<std::size_t>(h >> 40) & mask;
 }
 
 // Replaces the cavity by the cone from v over ws.boundary. Returns one of the new tets.
 TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
 {
   const std::size_t faceCount = ws.boundary.size();
-  // Edge table: at most 3*faceCount directed edges live at once; keep load <= 1/2.
+  // Edge table: 3*faceCount/2 undirected edges; keep the load factor under 1/4.
   if (ws.edgeTable.size() < 6 * faceCount)
   {
     std::size_t size = ws.edgeTable.size();
     while (size < 6 * faceCount)
       size *= 2;
-    ws.edgeTable.assign(size, InsertionWorkspace::EdgeSlot{ -1, -1, 0 });
+    ws.edgeTable.assign(size, InsertionWorkspace::EdgeSlot{ 0, -1, -1, 0 });
+    ws.edgeStamp = 0;
   }
+  if (++ws.edgeStamp == 0)
+  {
+    for (auto& slot : ws.edgeTable)
+      slot.stamp = 0;
+    ws.edgeStamp = 1;
+  }
+  const std::uint32_t stamp = ws.edgeStamp;
   const std::size_t mask = ws.edgeTable.size() - 1;
-  ws.usedSlots.clear();
   // Grow the tet arrays by 1/4 when full rather than letting std::vector double them: the
   // arrays are most of the memory, and doubling would cost up to 2x (3x during the copy).
   if (mesh.freeTets.size() + (mesh.tets.capacity() - mesh.tets.size()) / 4 < faceCount)
@@ -403,36 +416,28 @@ TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
     {
       const VertexId from = bf.v[e], to = bf.v[(e + 1) % 3];
       const FaceRef mine = makeFaceRef(t, kEdgeFace[e]);
-      // The neighbouring cone tet holds the same edge in the opposite direction.
-      std::size_t slot = edgeHash(to, from, mask);
-      bool glued = false;
-      while (ws.edgeTable[slot].from != -1)
+      // The neighbouring cone tet holds the same edge in the opposite direction. Each
+      // directed edge occurs once, so a matched slot can simply be left behind.
+      std::size_t slot = edgeHash(from, to, mask);
+      for (;;)
       {
         InsertionWorkspace::EdgeSlot& s = ws.edgeTable[slot];
+        if (s.stamp != stamp)
+        {
+          s = { stamp, from, to, mine };
+          break;
+        }
         if (s.from == to && s.to == from)
         {
           mesh.neighbors[base + kEdgeFace[e]] = s.face;
           mesh.neighbors[static_cast<std::size_t>(s.face)] = mine;
-          s.from = -2; // tombstone: keeps probe chains intact
-          s.to = -2;
-          glued = true;
           break;
         }
         slot = (slot + 1) & mask;
       }
-      if (glued)
-        continue;
-      slot = edgeHash(from, to, mask);
-      while (ws.edgeTable[slot].from >= 0)
-        slot = (slot + 1) & mask;
-      if (ws.edgeTable[slot].from == -1)
-        ws.usedSlots.push_back(static_cast<int>(slot));
-      ws.edgeTable[slot] = { from, to, mine };
     }
     lastTet = t;
   }
-  for (int s : ws.usedSlots)
-    ws.edgeTable[static_cast<std::size_t>(s)] = { -1, -1, 0 };
   // Cavity slots not reused (only possible in degenerate checked-mode cavities).
   for (std::size_t i = reused; i < ws.cavity.size(); ++i)
   {
