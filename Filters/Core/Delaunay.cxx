@@ -29,6 +29,21 @@
 namespace tetmesher
 {
 
+namespace
+{
+// Fixed seed of the walk's face-choice generator: walks, hence meshes, are deterministic.
+constexpr std::uint64_t kWalkSeed = 0x2545F4914F6CDD1DULL;
+
+// xorshift64: the walk only needs a cheap, well-spread choice among four faces.
+inline unsigned nextRandom(std::uint64_t& state)
+{
+  state ^= state << 13;
+  state ^= state >> 7;
+  state ^= state << 17;
+  return static_cast<unsigned>(state >> 32);
+}
+} // namespace
+
 struct InsertionWorkspace
 {
   struct BoundaryFace
@@ -54,7 +69,7 @@ struct InsertionWorkspace
   std::uint32_t edgeStamp = 0;
   std::vector<std::uint32_t> vertexStamp; // checked mode only
   std::uint32_t stamp = 0;
-  std::uint64_t rng = 0x2545F4914F6CDD1DULL; // fixed seed: deterministic walks
+  std::uint64_t rng = kWalkSeed;
   // Ids that define the symbolic perturbation, when the mesh being built uses other ids
   // (buildDelaunay renumbers the points in insertion order); nullptr: the ids themselves.
   const VertexId* perturbationIds = nullptr;
@@ -64,14 +79,6 @@ struct InsertionWorkspace
     cavity.reserve(256);
     rejected.reserve(256);
     boundary.reserve(512);
-  }
-
-  unsigned nextRandom()
-  {
-    rng ^= rng << 13;
-    rng ^= rng >> 7;
-    rng ^= rng << 17;
-    return static_cast<unsigned>(rng >> 32);
   }
 };
 
@@ -130,7 +137,7 @@ TetId exhaustiveLocate(const TetMesh& mesh, const double* p)
   return -1;
 }
 
-TetId walk(const TetMesh& mesh, const double* p, TetId start, InsertionWorkspace& ws)
+TetId walk(const TetMesh& mesh, const double* p, TetId start, std::uint64_t& rng)
 {
   const double* coords = mesh.coords.data();
   TetId t = start;
@@ -138,7 +145,7 @@ TetId walk(const TetMesh& mesh, const double* p, TetId start, InsertionWorkspace
   const std::size_t limit = 64 + 4 * static_cast<std::size_t>(mesh.liveTetCount());
   for (std::size_t steps = 0; steps < limit; ++steps)
   {
-    const unsigned r = ws.nextRandom();
+    const unsigned r = nextRandom(rng);
     bool moved = false;
     for (int i = 0; i < 4; ++i)
     {
@@ -460,7 +467,7 @@ InsertResult insertImpl(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspac
     if (hint < 0)
       return { InsertStatus::OutsideMesh, -1, -1 };
   }
-  const TetId t = walk(mesh, p, hint, ws);
+  const TetId t = walk(mesh, p, hint, ws.rng);
   if (t < 0)
     return { InsertStatus::OutsideMesh, -1, -1 };
   for (int k = 0; k < 4; ++k)
@@ -525,10 +532,10 @@ InsertResult insertVertex(TetMesh& mesh, VertexId v, TetId hint, InsertionWorksp
 
 TetId locatePoint(const TetMesh& mesh, const double* p, TetId hint)
 {
-  InsertionWorkspace ws;
   if (hint < 0 || hint >= mesh.tetCapacity() || mesh.isDeleted(hint))
     return exhaustiveLocate(mesh, p);
-  return walk(mesh, p, hint, ws);
+  std::uint64_t rng = kWalkSeed;
+  return walk(mesh, p, hint, rng);
 }
 
 DelaunayResult buildDelaunay(TetMesh& mesh, const DelaunayOptions& options)
