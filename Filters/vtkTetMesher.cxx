@@ -16,7 +16,9 @@
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkIdList.h"
 #include "vtkPoints.h"
+#include "vtkPolygon.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkTable.h"
@@ -82,6 +84,7 @@ void vtkTetMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumSteinerPoints: " << this->MaximumSteinerPoints << "\n";
   os << indent << "RemoveSteinerPoints: " << this->RemoveSteinerPoints << "\n";
   os << indent << "CheckInput: " << this->CheckInput << "\n";
+  os << indent << "TriangulatePolygons: " << this->TriangulatePolygons << "\n";
   os << indent << "NumberOfBins: " << this->NumberOfBins << "\n";
 }
 
@@ -133,8 +136,12 @@ int vtkTetMesher::RequestData(
   // Input cell ids of polygons come after the vertices and lines of a vtkPolyData.
   const vtkIdType firstPolyId = input->GetNumberOfVerts() + input->GetNumberOfLines();
   std::vector<std::int32_t> triangles;
+  std::vector<vtkIdType> cellOfTriangle; // the input cell each triangle comes from
   triangles.reserve(static_cast<std::size_t>(3 * input->GetNumberOfPolys()));
+  vtkIdType triangulatedPolygons = 0;
   {
+    vtkNew<vtkPolygon> polygon;
+    vtkNew<vtkIdList> fan;
     auto iter = vtk::TakeSmartPointer(input->GetPolys()->NewIterator());
     vtkIdType polyIndex = 0;
     for (iter->GoToFirstCell(); !iter->IsDoneWithTraversal(); iter->GoToNextCell(), ++polyIndex)
@@ -142,16 +149,45 @@ int vtkTetMesher::RequestData(
       vtkIdType size;
       const vtkIdType* ids;
       iter->GetCurrentCell(size, ids);
-      if (size != 3)
+      const vtkIdType cellId = firstPolyId + polyIndex;
+      if (size == 3)
       {
-        std::ostringstream message;
-        message << "input cell " << firstPolyId + polyIndex << " is a polygon with " << size
-                << " points: only triangles are meshed (triangulate with vtkTriangleFilter)";
-        return fail(message.str());
+        triangles.insert(triangles.end(), { static_cast<std::int32_t>(ids[0]),
+                                            static_cast<std::int32_t>(ids[1]),
+                                            static_cast<std::int32_t>(ids[2]) });
+        cellOfTriangle.push_back(cellId);
+        continue;
       }
-      triangles.insert(triangles.end(), { static_cast<std::int32_t>(ids[0]),
-                                          static_cast<std::int32_t>(ids[1]),
-                                          static_cast<std::int32_t>(ids[2]) });
+      std::ostringstream message;
+      message << "input cell " << cellId << " is a polygon with " << size << " points";
+      if (size < 3 || !this->TriangulatePolygons)
+      {
+        return fail(message.str() + (size < 3 ? "" : ": only triangles are meshed (turn "
+                                                      "TriangulatePolygons on, or use vtkTriangleFilter)"));
+      }
+      // Split it into triangles of its own points (the surface keeps its points).
+      polygon->Initialize(static_cast<int>(size), ids, input->GetPoints());
+      if (!polygon->Triangulate(fan) || fan->GetNumberOfIds() != 3 * (size - 2))
+      {
+        // Ear cutting needs a planar polygon. Otherwise fan from its first point; should
+        // the fan fold over, the input check reports the resulting intersections.
+        fan->Reset();
+        for (vtkIdType k = 1; k + 1 < size; ++k)
+        {
+          fan->InsertNextId(0);
+          fan->InsertNextId(k);
+          fan->InsertNextId(k + 1);
+        }
+      }
+      for (vtkIdType k = 0; k < fan->GetNumberOfIds(); k += 3)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          triangles.push_back(static_cast<std::int32_t>(ids[fan->GetId(k + c)]));
+        }
+        cellOfTriangle.push_back(cellId);
+      }
+      ++triangulatedPolygons;
     }
   }
   std::vector<double> coords(static_cast<std::size_t>(3 * pointCount));
@@ -170,12 +206,10 @@ int vtkTetMesher::RequestData(
     if (!diagnosis.ok())
     {
       std::string summary = diagnosis.summary(10);
-      if (firstPolyId > 0)
+      if (firstPolyId > 0 || triangulatedPolygons > 0)
       {
-        std::ostringstream note;
-        note << "\n(triangle ids count the input's polygons; add " << firstPolyId
-             << " for input cell ids)";
-        summary += note.str();
+        summary += "\n(triangle ids count the triangles of the input's polygons in order; "
+                   "input cell ids differ when the input has vertices, lines or polygons)";
       }
       return fail("the input surface cannot be meshed:\n" + summary);
     }
@@ -268,7 +302,8 @@ int vtkTetMesher::RequestData(
       auto found = triangleOfFace.find(MakeFaceKey(face));
       if (found != triangleOfFace.end())
       {
-        inputFaces->SetTypedComponent(t, kVtkFromCore[f], firstPolyId + found->second);
+        inputFaces->SetTypedComponent(
+          t, kVtkFromCore[f], cellOfTriangle[static_cast<std::size_t>(found->second)]);
       }
     }
   }
@@ -286,6 +321,7 @@ int vtkTetMesher::RequestData(
   tetmesher::vtkglue::AttachQualitySummary(quality.Summary, fieldData);
   AddScalar(fieldData, "SteinerPointCount", result.steinerPoints);
   AddScalar(fieldData, "RegionCount", result.regionCount);
+  AddScalar(fieldData, "TriangulatedPolygonCount", static_cast<double>(triangulatedPolygons));
   AddScalar(fieldData, "MeshingSeconds", result.totalSeconds);
   tetmesher::vtkglue::FillHistogramTable(quality.Histogram, histogram);
   tetmesher::vtkglue::AttachQualitySummary(quality.Summary, histogram->GetFieldData());

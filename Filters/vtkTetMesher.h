@@ -6,7 +6,7 @@
  * a 5-tet box, recovery of the missing surface edges and triangles by flips and Steiner
  * points strictly inside the volume, removal of the exterior by a flood fill.
  *
- * Input: a vtkPolyData of triangles, closed, possibly several shells; triangles shared by two
+ * Input: a vtkPolyData of triangles (polygons are triangulated), closed, possibly several shells; triangles shared by two
  * regions (multi-material interfaces, edges with 3+ triangles) are allowed. The surface is
  * checked first (exactly): open or non-manifold edges, self-intersections, degenerate or
  * duplicate triangles, coincident points, non-finite coordinates are refused with an error
@@ -81,6 +81,17 @@ public:
 
   ///@{
   /**
+   * Polygons with more than 3 points are split into triangles of their own points (on, the
+   * default; their count is in the field data `TriangulatedPolygonCount`), or refused with
+   * an error naming the cell (off).
+   */
+  vtkSetMacro(TriangulatePolygons, bool);
+  vtkGetMacro(TriangulatePolygons, bool);
+  vtkBooleanMacro(TriangulatePolygons, bool);
+  ///@}
+
+  ///@{
+  /**
    * Number of bins of the Q histogram (output 1). Default 20.
    */
   vtkSetClampMacro(NumberOfBins, int, 1, 10000);
@@ -106,6 +117,7 @@ protected:
   int MaximumSteinerPoints = -1;
   bool RemoveSteinerPoints = true;
   bool CheckInput = true;
+  bool TriangulatePolygons = true;
   int NumberOfBins = 20;
   std::string LastError;
 
