@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Side-by-side benchmark (not part of the test suite): TetMesher vs TetGen vs Gmsh vs
+# vtkDelaunay3D on the Data/ corpus. One command:
+#   bash scripts/benchmark.sh [--quick] [--cases a,b,c] [--tools ...] [--timeout S] [--repeat N]
+# Installs tetgen, gmsh, time and python3-matplotlib if missing (idempotent: dpkg is asked
+# first), builds the CLI into build-bench/ (Release, -j2), then runs scripts/benchmark.py,
+# which writes Testing/Benchmarks/results/corpus.{md,csv} and PNGs (corpus-partial.* for
+# --quick/--cases).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+SUDO=""
+if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
+missing=()
+for p in tetgen gmsh time python3-matplotlib python3-vtk9 python3-numpy; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if [ "${#missing[@]}" -gt 0 ]; then
+  echo "benchmark: installing ${missing[*]}"
+  $SUDO apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+if [ ! -f build-bench/build.ninja ]; then
+  cmake -S . -B build-bench -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF
+fi
+cmake --build build-bench -j2 --target tetmesher
+
+exec /usr/bin/python3 scripts/benchmark.py --tetmesher build-bench/bin/tetmesher "$@"
