@@ -360,31 +360,65 @@ bool Recovery::insertSteinerNear(VertexId seed, const FlipCost& cost)
 {
   std::vector<TetId> pipe;
   collectPipe(seed, cost, pipe);
-  // Prefer tets the item cuts through, from the middle of the pipe outwards.
-  std::vector<TetId> order;
-  for (TetId t : pipe)
+  // Candidate positions, best first. (1) Next to the middle of an edge that cuts the item,
+  // inside a tet around it: every tet around an edge has the edge's midpoint strictly inside
+  // its circumsphere, so the insertion cavity swallows the whole shell and the edge is gone
+  // (the fix for coplanar crossings, e.g. the wrong diagonal of a square face). (2) The
+  // centroid of a tet the item cuts through, from the middle of the pipe outwards; (3) of any
+  // pipe tet.
+  struct Candidate
   {
-    if (cost.tet(tetVertices(t)) > 0)
-      order.push_back(t);
-  }
+    TetId tet;
+    VertexId p, q; // edge to approach, or -1
+  };
+  std::vector<Candidate> order;
+  std::set<std::uint64_t> seen;
+  std::vector<TetId> shell;
+  std::vector<VertexId> ring;
   for (TetId t : pipe)
-  {
-    if (cost.tet(tetVertices(t)) == 0)
-      order.push_back(t);
-  }
-  std::size_t half = order.size() / 2;
-  std::rotate(order.begin(), order.begin() + half, order.end());
-  for (TetId t : order)
   {
     TetVertices v = tetVertices(t);
+    for (int i = 0; i < 4; ++i)
+    {
+      for (int j = i + 1; j < 4; ++j)
+      {
+        if (!seen.insert(edgeKey(v[i], v[j])).second || cost.edge(v[i], v[j]) == 0)
+          continue;
+        if (!edgeShell(mesh_, t, v[i], v[j], shell, ring))
+          shell = { t };
+        for (TetId s : shell)
+          order.push_back({ s, v[i], v[j] });
+      }
+    }
+  }
+  std::size_t nearEdges = order.size();
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    std::size_t first = order.size();
+    for (TetId t : pipe)
+    {
+      if ((cost.tet(tetVertices(t)) > 0) == (pass == 0))
+        order.push_back({ t, -1, -1 });
+    }
+    std::rotate(
+      order.begin() + first, order.begin() + first + (order.size() - first) / 2, order.end());
+  }
+  std::rotate(order.begin(), order.begin() + nearEdges / 2, order.begin() + nearEdges);
+  for (const Candidate& candidate : order)
+  {
+    TetVertices v = tetVertices(candidate.tet);
     const double* p[4] = { point(v[0]), point(v[1]), point(v[2]), point(v[3]) };
     double c[3];
     for (int k = 0; k < 3; ++k)
+    {
       c[k] = 0.25 * (p[0][k] + p[1][k] + p[2][k] + p[3][k]);
+      if (candidate.p >= 0)
+        c[k] = 0.2 * c[k] + 0.4 * (point(candidate.p)[k] + point(candidate.q)[k]);
+    }
     if (!geometry::pointInsideTet(c, p) || onInputSurface(c))
       continue;
     VertexId id = mesh_.addVertex(c[0], c[1], c[2]);
-    InsertResult r = insertVertex(mesh_, id, t, *workspace_);
+    InsertResult r = insertVertex(mesh_, id, candidate.tet, *workspace_);
     if (r.status == InsertStatus::Inserted)
     {
       result_.steinerVertices.push_back(id);
