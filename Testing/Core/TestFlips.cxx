@@ -1,0 +1,277 @@
+// Local transformations (Flips.h), topology edits (MeshTopology.h), Steiner point removal
+// (SteinerRemoval.h) and the exact intersection tests of recovery (RecoveryGeometry.h), on
+// small hand-built meshes.
+#include "Flips.h"
+#include "MeshTopology.h"
+#include "MeshValidation.h"
+#include "Predicates.h"
+#include "RecoveryGeometry.h"
+#include "SteinerRemoval.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+
+using namespace tetmesher;
+
+namespace
+{
+
+// Builds a mesh from points and positively oriented tets, gluing shared faces.
+TetMesh buildMesh(const std::vector<std::array<double, 3>>& points,
+  const std::vector<TetVertices>& tets)
+{
+  TetMesh mesh;
+  for (const auto& p : points)
+    mesh.addVertex(p[0], p[1], p[2]);
+  std::map<std::array<VertexId, 3>, FaceRef> open;
+  for (const auto& v : tets)
+  {
+    TetId t = mesh.addTet(v[0], v[1], v[2], v[3]);
+    for (int f = 0; f < 4; ++f)
+    {
+      std::array<VertexId, 3> key = {
+        v[kFaceVertices[f][0]], v[kFaceVertices[f][1]], v[kFaceVertices[f][2]]
+      };
+      std::sort(key.begin(), key.end());
+      auto it = open.find(key);
+      if (it == open.end())
+        open.emplace(key, makeFaceRef(t, f));
+      else
+      {
+        mesh.glue(t, f, faceTet(it->second), faceIndex(it->second));
+        open.erase(it);
+      }
+    }
+  }
+  return mesh;
+}
+
+TetVertices positive(const TetMesh& mesh, VertexId a, VertexId b, VertexId c, VertexId d)
+{
+  if (predicates::orient3d(mesh.point(a), mesh.point(b), mesh.point(c), mesh.point(d)) < 0)
+    std::swap(a, b);
+  return { a, b, c, d };
+}
+
+long double volume(const TetMesh& mesh)
+{
+  return volumeWithoutVertices(mesh, mesh.vertexCount());
+}
+
+// Two tets (x,y,z,a) and (x,y,z,w) on either side of the triangle xyz.
+TetMesh twoTets(double wx)
+{
+  std::vector<std::array<double, 3>> p = {
+    { 1, 0, 0 }, { -0.5, 1, 0 }, { -0.5, -1, 0 }, { 0, 0, 1 }, { wx, 0, -1 }
+  };
+  TetMesh probe = buildMesh(p, {});
+  return buildMesh(p, { positive(probe, 0, 1, 2, 3), positive(probe, 0, 2, 1, 4) });
+}
+
+} // namespace
+
+TEST(Flips, Flip23ThenEdgeRemovalRestores)
+{
+  TetMesh mesh = twoTets(0.0);
+  VertexTetIndex index;
+  index.rebuild(mesh);
+  const long double before = volume(mesh);
+  FlipCandidate c;
+  // Face opposite the apex 3 of tet 0.
+  int f = localIndex(mesh, 0, 3);
+  ASSERT_TRUE(flip23Candidate(mesh, 0, f, {}, c));
+  ASSERT_EQ(c.newTets.size(), 3u);
+  replaceTets(mesh, index, c.oldTets, c.newTets);
+  EXPECT_EQ(mesh.liveTetCount(), 3);
+  EXPECT_EQ(checkOrientation(mesh), "");
+  EXPECT_EQ(checkAdjacency(mesh, true), "");
+  EXPECT_NEAR(static_cast<double>(volume(mesh)), static_cast<double>(before), 1e-15);
+  // The new edge (3,4) has a shell of three tets: removing it is the 3-2 flip.
+  TetId t = findEdge(mesh, index, 3, 4);
+  ASSERT_GE(t, 0);
+  ASSERT_TRUE(edgeRemovalCandidate(mesh, t, 3, 4, {}, c));
+  EXPECT_EQ(c.newTets.size(), 2u);
+  replaceTets(mesh, index, c.oldTets, c.newTets);
+  EXPECT_EQ(mesh.liveTetCount(), 2);
+  EXPECT_EQ(findEdge(mesh, index, 3, 4), -1);
+  EXPECT_GE(findFace(mesh, index, 0, 1, 2), 0);
+  EXPECT_EQ(checkOrientation(mesh), "");
+  EXPECT_EQ(checkAdjacency(mesh, true), "");
+}
+
+TEST(Flips, Flip23RefusedWhenApexSegmentMissesFace)
+{
+  // w far to the side: segment (a,w) passes outside the triangle, one new tet would be
+  // inverted.
+  TetMesh mesh = twoTets(3.0);
+  FlipCandidate c;
+  EXPECT_FALSE(flip23Candidate(mesh, 0, localIndex(mesh, 0, 3), {}, c));
+}
+
+TEST(Flips, ConstrainedFaceIsNeverFlipped)
+{
+  TetMesh mesh = twoTets(0.0);
+  int f = localIndex(mesh, 0, 3);
+  mesh.setConstrained(0, f, true);
+  FaceRef n = mesh.neighbor(0, f);
+  mesh.setConstrained(faceTet(n), faceIndex(n), true);
+  FlipCandidate c;
+  EXPECT_FALSE(flip23Candidate(mesh, 0, f, {}, c));
+}
+
+TEST(Flips, EdgeRemovalOfAnOctahedronDiagonalAndFlagsKept)
+{
+  // Octahedron split into 4 tets around its vertical axis (4,5): removal gives 4 tets (4-4).
+  std::vector<std::array<double, 3>> p = {
+    { 1, 0, 0 }, { 0, 1, 0 }, { -1, 0, 0 }, { 0, -1, 0 }, { 0, 0, 1 }, { 0, 0, -1 }
+  };
+  TetMesh probe = buildMesh(p, {});
+  std::vector<TetVertices> tets;
+  for (int k = 0; k < 4; ++k)
+    tets.push_back(positive(probe, 4, 5, k, (k + 1) % 4));
+  TetMesh mesh = buildMesh(p, tets);
+  // Flag one outer face; it must survive the flip.
+  FaceRef outer = -1;
+  for (int f = 0; f < 4 && outer < 0; ++f)
+  {
+    if (mesh.vertex(0, f) == 5)
+      outer = makeFaceRef(0, f);
+  }
+  ASSERT_GE(outer, 0);
+  mesh.setConstrained(faceTet(outer), faceIndex(outer), true);
+  VertexTetIndex index;
+  index.rebuild(mesh);
+  FlipCandidate c;
+  // Prefer any triangulation; the cost counts nothing.
+  ASSERT_TRUE(edgeRemovalCandidate(mesh, 0, 4, 5, {}, c));
+  EXPECT_EQ(c.newTets.size(), 4u);
+  replaceTets(mesh, index, c.oldTets, c.newTets);
+  EXPECT_EQ(findEdge(mesh, index, 4, 5), -1);
+  EXPECT_EQ(checkOrientation(mesh), "");
+  EXPECT_EQ(checkAdjacency(mesh, false), "");
+  int flagged = 0;
+  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+  {
+    for (int f = 0; f < 4 && !mesh.isDeleted(t); ++f)
+      flagged += mesh.isConstrained(t, f);
+  }
+  EXPECT_EQ(flagged, 1);
+}
+
+TEST(Flips, ConstrainedFaceAroundEdgeBlocksRemoval)
+{
+  std::vector<std::array<double, 3>> p = {
+    { 1, 0, 0 }, { 0, 1, 0 }, { -1, 0, 0 }, { 0, -1, 0 }, { 0, 0, 1 }, { 0, 0, -1 }
+  };
+  TetMesh probe = buildMesh(p, {});
+  std::vector<TetVertices> tets;
+  for (int k = 0; k < 4; ++k)
+    tets.push_back(positive(probe, 4, 5, k, (k + 1) % 4));
+  TetMesh mesh = buildMesh(p, tets);
+  // Face (4,5,ring vertex) of tet 0, i.e. the face opposite one of its ring vertices.
+  int f = mesh.vertex(0, 0) != 4 && mesh.vertex(0, 0) != 5
+    ? 0
+    : (mesh.vertex(0, 1) != 4 && mesh.vertex(0, 1) != 5 ? 1 : 2);
+  mesh.setConstrained(0, f, true);
+  FaceRef n = mesh.neighbor(0, f);
+  mesh.setConstrained(faceTet(n), faceIndex(n), true);
+  FlipCandidate c;
+  EXPECT_FALSE(edgeRemovalCandidate(mesh, 0, 4, 5, {}, c));
+}
+
+TEST(Flips, CostSteersEdgeRemoval)
+{
+  // Same octahedron: the ring (0,1,2,3) has two triangulations; a cost on edge (1,3) makes the
+  // removal choose the diagonal (0,2).
+  std::vector<std::array<double, 3>> p = {
+    { 1, 0, 0 }, { 0, 1, 0 }, { -1, 0, 0 }, { 0, -1, 0 }, { 0, 0, 1 }, { 0, 0, -1 }
+  };
+  TetMesh probe = buildMesh(p, {});
+  std::vector<TetVertices> tets;
+  for (int k = 0; k < 4; ++k)
+    tets.push_back(positive(probe, 4, 5, k, (k + 1) % 4));
+  TetMesh mesh = buildMesh(p, tets);
+  FlipCost cost;
+  cost.edge = [](VertexId a, VertexId b) { return std::minmax(a, b) == std::minmax(1, 3) ? 5 : 0; };
+  FlipCandidate c;
+  ASSERT_TRUE(edgeRemovalCandidate(mesh, 0, 4, 5, cost, c));
+  EXPECT_EQ(c.newCost, 0);
+  VertexTetIndex index;
+  index.rebuild(mesh);
+  replaceTets(mesh, index, c.oldTets, c.newTets);
+  EXPECT_GE(findEdge(mesh, index, 0, 2), 0);
+  EXPECT_EQ(findEdge(mesh, index, 1, 3), -1);
+}
+
+TEST(Flips, SteinerPointRemovedByFourToOne)
+{
+  std::vector<std::array<double, 3>> p = {
+    { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 0.2, 0.2, 0.2 }
+  };
+  TetMesh probe = buildMesh(p, {});
+  std::vector<TetVertices> tets;
+  const int faces[4][3] = { { 0, 1, 2 }, { 0, 1, 3 }, { 0, 2, 3 }, { 1, 2, 3 } };
+  for (auto& f : faces)
+    tets.push_back(positive(probe, f[0], f[1], f[2], 4));
+  TetMesh mesh = buildMesh(p, tets);
+  std::vector<VertexId> steiner = { 4 };
+  EXPECT_EQ(removeSteinerPoints(mesh, steiner), 1);
+  EXPECT_TRUE(steiner.empty());
+  EXPECT_EQ(mesh.liveTetCount(), 1);
+  EXPECT_EQ(checkOrientation(mesh), "");
+}
+
+TEST(RecoveryGeometry, SegmentAndTriangle)
+{
+  const double p[3] = { 0, 0, 0 }, q[3] = { 1, 0, 0 }, r[3] = { 0, 1, 0 };
+  const double above[3] = { 0.2, 0.2, 1 }, below[3] = { 0.2, 0.2, -1 }, far[3] = { 2, 2, -1 };
+  EXPECT_TRUE(geometry::segmentMeetsTriangle(above, below, p, q, r));
+  EXPECT_FALSE(geometry::segmentMeetsTriangle(above, far, p, q, r));
+  // Ends on the plane: the open segment does not meet the triangle.
+  const double onPlane[3] = { 0.2, 0.2, 0 };
+  EXPECT_FALSE(geometry::segmentMeetsTriangle(above, onPlane, p, q, r));
+  // Coplanar, crossing the triangle.
+  const double a[3] = { -1, 0.25, 0 }, b[3] = { 2, 0.25, 0 };
+  EXPECT_TRUE(geometry::segmentMeetsTriangle(a, b, p, q, r));
+  // Coplanar along an edge line only: no interior point.
+  const double c[3] = { -1, 0, 0 }, d[3] = { 2, 0, 0 };
+  EXPECT_FALSE(geometry::segmentMeetsTriangle(c, d, p, q, r));
+  // Through a triangle edge exactly: not the relative interior.
+  const double e[3] = { 0.5, 0, 1 }, g[3] = { 0.5, 0, -1 };
+  EXPECT_FALSE(geometry::segmentMeetsTriangle(e, g, p, q, r));
+}
+
+TEST(RecoveryGeometry, SegmentsCrossAndSimplexInTet)
+{
+  const double a[3] = { 0, 0, 0 }, b[3] = { 1, 1, 0 }, c[3] = { 1, 0, 0 }, d[3] = { 0, 1, 0 };
+  EXPECT_TRUE(geometry::segmentsCross(a, b, c, d));
+  const double e[3] = { 0, 1, 1 };
+  EXPECT_FALSE(geometry::segmentsCross(a, b, c, e));
+  EXPECT_FALSE(geometry::segmentsCross(a, c, a, d)); // shared end point only
+  const double t0[3] = { 0, 0, 0 }, t1[3] = { 1, 0, 0 }, t2[3] = { 0, 1, 0 }, t3[3] = { 0, 0, 1 };
+  const double* tet[4] = { t0, t2, t1, t3 }; // positively oriented
+  const double in1[3] = { 0.1, 0.1, 0.1 }, out1[3] = { 2, 2, 2 };
+  const double* seg[2] = { in1, out1 };
+  EXPECT_TRUE(geometry::simplexMeetsTetInterior(seg, 2, tet));
+  const double o1[3] = { -1, -1, -1 }, o2[3] = { -1, 2, -1 };
+  const double* away[2] = { o1, o2 };
+  EXPECT_FALSE(geometry::simplexMeetsTetInterior(away, 2, tet));
+  // An edge of the tet does not meet its interior; a face diagonal-like segment on a face
+  // does not either.
+  const double* edge[2] = { t0, t1 };
+  EXPECT_FALSE(geometry::simplexMeetsTetInterior(edge, 2, tet));
+  const double* face[3] = { t0, t1, t2 };
+  EXPECT_FALSE(geometry::simplexMeetsTetInterior(face, 3, tet));
+  // A triangle slicing the tet.
+  const double s0[3] = { -1, -1, 0.2 }, s1[3] = { 3, -1, 0.2 }, s2[3] = { -1, 3, 0.2 };
+  const double* slice[3] = { s0, s1, s2 };
+  EXPECT_TRUE(geometry::simplexMeetsTetInterior(slice, 3, tet));
+  EXPECT_TRUE(geometry::pointInsideTet(in1, tet));
+  EXPECT_FALSE(geometry::pointInsideTet(t0, tet));
+  const double onFace[3] = { 0.25, 0.25, 0 };
+  EXPECT_TRUE(geometry::pointOnTriangle(onFace, t0, t1, t2));
+  EXPECT_TRUE(geometry::pointOnTriangle(t1, t0, t1, t2));
+  EXPECT_FALSE(geometry::pointOnTriangle(in1, t0, t1, t2));
+}
