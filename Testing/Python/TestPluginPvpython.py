@@ -38,4 +38,23 @@ assert abs(mesh.GetFieldData().GetArray("QualityMinimum").GetValue(0) - q_ref.mi
 histogram = servermanager.Fetch(quality, arg1=None, arg2=None, idx=1)
 counts = vtk_to_numpy(histogram.GetColumnByName("Count"))
 assert (counts == np.histogram(q_ref, bins=10, range=(0, 1))[0]).all(), counts
+# The mesher proxy on a real surface: the boundary of the result is exactly the input.
+from paraview.simple import XMLPolyDataReader  # noqa: E402
+from mesh_invariants import check_boundary_mesh  # noqa: E402
+
+surface_reader = XMLPolyDataReader(FileName=[os.path.join(data, "..", "..", "Data", "torus.vtp")])
+mesher = TetMesher(Input=surface_reader)  # noqa: F821 (defined by LoadPlugin)
+mesher.UpdatePipeline()
+surface = servermanager.Fetch(surface_reader)
+tet_mesh = servermanager.Fetch(mesher, arg1=None, arg2=None, idx=0)
+in_points = vtk_to_numpy(surface.GetPoints().GetData()).astype(np.float64)
+in_triangles = vtk_to_numpy(surface.GetPolys().GetConnectivityArray()).reshape(-1, 3)
+out_points = vtk_to_numpy(tet_mesh.GetPoints().GetData())
+out_tets = vtk_to_numpy(tet_mesh.GetCells().GetConnectivityArray()).reshape(-1, 4)
+problems = check_boundary_mesh(in_points, in_triangles, out_points, out_tets)
+assert not problems, problems
+assert tet_mesh.GetCellData().GetArray("Quality") is not None
+assert tet_mesh.GetCellData().GetArray("RegionId") is not None
+print("TetMesher proxy: %d tets, boundary exact" % len(out_tets))
+
 print("TestPluginPvpython: ok, Q min %.4f mean %.4f" % (q_ref.min(), q_ref.mean()))
