@@ -91,30 +91,10 @@ def load_surface(path):
 
 
 def triangulate(pts, faces):
-    """Triangles (m,3): the faces themselves, or vtkTriangleFilter's triangulation of polygons
-    (same points)."""
-    if all(len(f) == 3 for f in faces):
-        return np.array(faces, dtype=np.int64).reshape(-1, 3)
-    from vtkmodules.vtkCommonCore import vtkIdList
-    from vtkmodules.vtkCommonDataModel import vtkCellArray
-    from vtkmodules.vtkFiltersCore import vtkTriangleFilter
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-    pd = polydata(pts, np.zeros((0, 3), dtype=np.int64))
-    ca = vtkCellArray()
-    for f in faces:
-        ids = vtkIdList()
-        for v in f:
-            ids.InsertNextId(int(v))
-        ca.InsertNextCell(ids)
-    pd.SetPolys(ca)
-    tf = vtkTriangleFilter()
-    tf.SetInputData(pd)
-    tf.PassLinesOff()
-    tf.PassVertsOff()
-    tf.Update()
-    out = tf.GetOutput()
-    assert out.GetNumberOfPoints() == len(pts)
-    return vtk_to_numpy(out.GetPolys().GetConnectivityArray()).astype(np.int64).reshape(-1, 3)
+    """Triangles (m,3): the faces themselves, polygons split as fans from their first vertex
+    (as the triangle counts of Data/corpus.csv; .off polygons may be non-planar)."""
+    return np.array([[f[0], f[i], f[i + 1]] for f in faces for i in range(1, len(f) - 1)],
+                    dtype=np.int64).reshape(-1, 3)
 
 
 def shells(tris, npts):
@@ -634,11 +614,16 @@ def main():
     ap.add_argument("--tetmesher", default=os.path.join(ROOT, "build-bench", "bin", "tetmesher"))
     ap.add_argument("--out", default=os.path.join(ROOT, "Testing", "Benchmarks", "results"))
     ap.add_argument("--work", default=None, help="scratch folder (default: a temporary one)")
-    ap.add_argument("--hist-case", default="stator_ring", help="case of the Q histogram PNG")
+    ap.add_argument("--hist-case", default="gear", help="case of the Q histogram PNG")
+    ap.add_argument("--rewrite-md", action="store_true",
+                    help="only regenerate the tables of OUT/corpus.md from OUT/corpus.csv")
     ap.add_argument("--delaunay3d", nargs=2, metavar=("IN", "OUT"), help=argparse.SUPPRESS)
     args = ap.parse_args()
     if args.delaunay3d:
         delaunay3d_main(*args.delaunay3d)
+        return
+    if args.rewrite_md:
+        rewrite_md(args.out)
         return
     names = None
     if args.cases:
@@ -760,6 +745,49 @@ def write_outputs(args, rows, cases, tools, command, started, finished, qhist):
               "Q = 2*sqrt(6)*r_in/l_max; *Q<0.3* = share of tets; dihedral min/max in degrees; "
               "*dV* = (sum of tet volumes - enclosed volume)/enclosed volume.")
     md.append("")
+    md.extend(tables_md(rows, tools))
+    plots = make_plots(args, rows, tools, qhist)
+    for p in plots:
+        md.append("![%s](%s)" % (p, p))
+    with open(os.path.join(args.out, "corpus%s.md" % suffix), "w") as f:
+        f.write("\n".join(md) + "\n")
+
+
+def short(r):
+    """One cell of the pivot table: time ratio vs TetMesher and boundary check, or the failure."""
+    if r is None:
+        return ""
+    if r["rc"] == "timeout":
+        return "time-out"
+    if r["success"] != "yes":
+        return "FAIL"
+    t = "%.3g s" % r["time_s"] if r.get("time_ratio") in (None, "") else "x%.2g" % r["time_ratio"]
+    return "%s, %s%s" % (t, "kept" if r.get("boundary_kept") == "yes" else "NOT kept",
+                         ", Qmin %.2f" % r["q_min"] if r.get("q_min") not in (None, "") else "")
+
+
+def tables_md(rows, tools):
+    md = []
+    # pivot: one line per case
+    md.append("## Per case, TetMesher vs the others\n")
+    md.append("Other tools: wall time as a multiple of TetMesher's (x0.5 = twice as fast as "
+              "TetMesher), whether the boundary is kept exactly, Q min. Details below.\n")
+    others = [t for t in tools if t != "tetmesher"]
+    md.append("| case | tris | TetMesher | %s |" % " | ".join(others))
+    md.append("|---|---|---|%s" % ("---|" * len(others)))
+    by = {(r["case"], r["tool"]): r for r in rows}
+    for c in dict.fromkeys(r["case"] for r in rows):
+        m = by.get((c, "tetmesher"))
+        if m is None:
+            cell = ""
+        elif m["success"] == "yes":
+            cell = "%.3g s, %s, Qmin %.2f" % (m["time_s"], "kept" if m.get("boundary_kept") == "yes"
+                                              else "NOT kept", m["q_min"])
+        else:
+            cell = "**%s**" % ("time-out" if m["rc"] == "timeout" else "FAIL")
+        tri = next(r["triangles"] for r in rows if r["case"] == c)
+        md.append("| %s | %s | %s | %s |" % (c, tri, cell, " | ".join(short(by.get((c, t))) for t in others)))
+    md.append("")
     # summary per tool
     md.append("## Summary per tool\n")
     md.append("| tool | success | boundary kept | total time s | median time ratio vs TetMesher | "
@@ -795,11 +823,35 @@ def write_outputs(args, rows, cases, tools, command, started, finished, qhist):
             fmt(r.get("dih_min"), ".2f"), fmt(r.get("dih_max"), ".2f"),
             fmt(r.get("vol_relerr"), ".1e"), r["error"].replace("|", "/")))
     md.append("")
-    plots = make_plots(args, rows, tools, qhist)
-    for p in plots:
-        md.append("![%s](%s)" % (p, p))
-    with open(os.path.join(args.out, "corpus%s.md" % suffix), "w") as f:
-        f.write("\n".join(md) + "\n")
+    return md
+
+
+def rewrite_md(out):
+    """Regenerate the tables of corpus.md from corpus.csv (header and plots kept)."""
+    rows = []
+    with open(os.path.join(out, "corpus.csv")) as f:
+        for r in csv.DictReader(f):
+            for k, v in list(r.items()):
+                if k in ("case", "tool", "success", "boundary_kept", "error"):
+                    continue
+                if v == "":
+                    r[k] = None
+                elif k == "rc" and v == "timeout":
+                    pass
+                else:
+                    x = float(v)
+                    r[k] = int(x) if x.is_integer() and k not in ("time_s", "time_ratio", "rss_mb",
+                                                                   "q_min", "q_mean", "q_lt03") else x
+            r["error"] = r["error"] or ""
+            rows.append(r)
+    tools = list(dict.fromkeys(r["tool"] for r in rows))
+    path = os.path.join(out, "corpus.md")
+    with open(path) as f:
+        old = f.read()
+    head = old.split("## Per case, TetMesher")[0].split("## Summary per tool")[0].rstrip("\n").split("\n")
+    pics = [l for l in old.split("\n") if l.startswith("![")]
+    with open(path, "w") as f:
+        f.write("\n".join(head + [""] + tables_md(rows, tools) + pics) + "\n")
 
 
 def make_plots(args, rows, tools, qhist):
