@@ -33,8 +33,18 @@ public:
     , options_(options)
   {
     index_.rebuild(mesh_);
-    for (const auto& e : surface_.edges)
-      inputEdges_.insert(edgeKey(e[0], e[1]));
+    std::map<std::uint64_t, std::size_t> edgeIndex;
+    for (std::size_t e = 0; e < surface_.edges.size(); ++e)
+    {
+      inputEdges_.insert(edgeKey(surface_.edges[e][0], surface_.edges[e][1]));
+      edgeIndex.emplace(edgeKey(surface_.edges[e][0], surface_.edges[e][1]), e);
+    }
+    edgeTriangles_.resize(surface_.edges.size());
+    for (const auto& t : surface_.triangles)
+    {
+      for (int k = 0; k < 3; ++k)
+        edgeTriangles_[edgeIndex.at(edgeKey(t[k], t[(k + 1) % 3]))].push_back(t);
+    }
     for (const auto& t : surface_.triangles)
     {
       std::array<double, 6> box;
@@ -63,6 +73,7 @@ private:
 
   FlipCost edgeCost(VertexId a, VertexId b) const;
   FlipCost faceCost(const std::array<VertexId, 3>& tri) const;
+  FlipCost edgeAndFacesCost(std::size_t e) const;
   // Tets whose tet/face/edge terms of `cost` are positive, grown from the star of `seed`.
   void collectPipe(VertexId seed, const FlipCost& cost, std::vector<TetId>& pipe);
   int tetCost(const FlipCost& cost, TetId t) const;
@@ -90,6 +101,7 @@ private:
   std::vector<std::array<double, 6>> triangleBoxes_;
   std::unique_ptr<InsertionWorkspace, WorkspaceDeleter> workspace_{ createInsertionWorkspace() };
   RecoveryResult result_;
+  std::vector<std::vector<std::array<VertexId, 3>>> edgeTriangles_; // input triangles per edge
   std::map<std::size_t, int> steinerPerItem_; // edges by index, then triangles after them
 };
 
@@ -107,6 +119,39 @@ FlipCost Recovery::edgeCost(VertexId a, VertexId b) const
   };
   c.edge = [this, a, b](VertexId u, VertexId v)
   { return geometry::segmentsCross(point(a), point(b), point(u), point(v)) ? 1 : 0; };
+  return c;
+}
+
+FlipCost Recovery::edgeAndFacesCost(std::size_t e) const
+{
+  // The missing edge plus the input triangles around it: tets that straddle a planar part of
+  // the surface next to the edge are obstacles too, and counting them lets flips (and Steiner
+  // points near the middle of their crossing edges, far from the surface) clear them.
+  std::vector<FlipCost> parts = { edgeCost(surface_.edges[e][0], surface_.edges[e][1]) };
+  for (const auto& tri : edgeTriangles_[e])
+    parts.push_back(faceCost(tri));
+  FlipCost c;
+  c.tet = [parts](const TetVertices& t)
+  {
+    int sum = 0;
+    for (const FlipCost& part : parts)
+      sum += part.tet ? part.tet(t) : 0;
+    return sum;
+  };
+  c.face = [parts](VertexId x, VertexId y, VertexId z)
+  {
+    int sum = 0;
+    for (const FlipCost& part : parts)
+      sum += part.face ? part.face(x, y, z) : 0;
+    return sum;
+  };
+  c.edge = [parts](VertexId u, VertexId v)
+  {
+    int sum = 0;
+    for (const FlipCost& part : parts)
+      sum += part.edge ? part.edge(u, v) : 0;
+    return sum;
+  };
   return c;
 }
 
@@ -458,7 +503,8 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
     {
       VertexId a = edges[e][0], b = edges[e][1];
       auto exists = [&] { return findEdge(mesh_, index_, a, b) >= 0; };
-      flipUntil(a, edgeCost(a, b), exists);
+      if (!flipUntil(a, edgeCost(a, b), exists))
+        flipUntil(a, edgeAndFacesCost(e), exists);
     }
     for (std::size_t i = 0; i < triangles.size(); ++i)
     {
@@ -521,7 +567,10 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
         continue;
       std::ostringstream name;
       name << "input edge (" << a << "," << b << ") of triangle " << surface_.edgeFirstTriangle[e];
-      if (!steinerFor(e, name.str(), a, edgeCost(a, b)))
+      // Alternate between placing the point against the edge alone and against the edge and
+      // its triangles (which reaches tets straddling a planar part of the surface).
+      bool alone = steinerPerItem_[e] % 2 == 0;
+      if (!steinerFor(e, name.str(), a, alone ? edgeCost(a, b) : edgeAndFacesCost(e)))
         return result_;
     }
     for (std::size_t i = 0; i < triangles.size() && inserted == 0; ++i)

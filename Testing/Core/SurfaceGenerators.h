@@ -300,6 +300,48 @@ inline Surface schonhardtPrism(double twist = 0.5)
   return s;
 }
 
+// A stack of Schonhardt bands: `sides`-gon layers, each turned by `twist` from the one below,
+// every side quad split along its reflex diagonal. Each band needs interior Steiner points.
+inline Surface twistedTower(int sides, int layers, double twist, double layerHeight = 0.5)
+{
+  Surface s;
+  const double pi = 3.14159265358979323846;
+  for (int l = 0; l <= layers; ++l)
+  {
+    for (int i = 0; i < sides; ++i)
+    {
+      double a = 2 * pi * i / sides + l * twist;
+      s.addPoint(std::cos(a), std::sin(a), l * layerHeight);
+    }
+  }
+  const double middle[3] = { 0, 0, 0.5 * layers * layerHeight };
+  auto id = [&](int l, int i) { return l * sides + (i % sides); };
+  for (int i = 1; i + 1 < sides; ++i)
+  {
+    s.addTriangle(id(0, 0), id(0, i), id(0, i + 1));
+    orientAway(s, s.triangleCount() - 1, middle);
+    s.addTriangle(id(layers, 0), id(layers, i), id(layers, i + 1));
+    orientAway(s, s.triangleCount() - 1, middle);
+  }
+  for (int l = 0; l < layers; ++l)
+  {
+    for (int i = 0; i < sides; ++i)
+    {
+      s.addTriangle(id(l, i), id(l, i + 1), id(l + 1, i + 1));
+      s.addTriangle(id(l, i), id(l + 1, i + 1), id(l + 1, i));
+      for (int k = 2; k >= 1; --k)
+      {
+        std::int32_t t = s.triangleCount() - k;
+        double axis[3] = { 0, 0, 0 };
+        for (int m = 0; m < 3; ++m)
+          axis[2] += s.points[3 * s.triangles[3 * t + m] + 2] / 3;
+        orientAway(s, t, axis);
+      }
+    }
+  }
+  return s;
+}
+
 // Moves every point by up to `amount` times a random vector (deterministic LCG).
 inline void jitter(Surface& s, double amount, std::uint64_t seed)
 {

@@ -66,7 +66,7 @@ TEST(BoundaryMesh, Cube)
 
 TEST(BoundaryMesh, SubdividedCube)
 {
-  for (int n : { 2, 3, 5 })
+  for (int n : { 2, 3, 5, 10 })
   {
     Surface s = cube(n);
     meshAndCheck(s, allOutward(s), 1);
@@ -114,6 +114,8 @@ TEST(BoundaryMesh, ThinSlab)
 {
   Surface s = box({ 0, 0, 0 }, { 1, 1, 0.02 }, { 8, 8, 1 });
   meshAndCheck(s, allOutward(s), 1);
+  Surface thinner = box({ 0, 0, 0 }, { 1, 1, 0.001 }, { 20, 20, 1 });
+  meshAndCheck(thinner, allOutward(thinner), 1);
 }
 
 TEST(BoundaryMesh, SlottedRing)
@@ -122,11 +124,29 @@ TEST(BoundaryMesh, SlottedRing)
   meshAndCheck(s, allOutward(s), 1);
 }
 
+TEST(BoundaryMesh, SlottedRingThinWithDeepSlots)
+{
+  // 24 teeth, slots down to r = 0.5 over an inner radius 0.4, height 0.1: long sliver
+  // triangles on the planar caps and narrow walls.
+  Surface s = slottedRing(24, 6, 0.4, 0.5, 1.0, 0.1);
+  meshAndCheck(s, allOutward(s), 1);
+}
+
 TEST(BoundaryMesh, SchonhardtPrism)
 {
   Surface s = schonhardtPrism();
   MesherResult r = meshAndCheck(s, allOutward(s), 1);
   EXPECT_GE(r.steinerPoints, 1) << "the Schonhardt prism has no tetrahedralization without one";
+}
+
+TEST(BoundaryMesh, TwistedTowerNeedsSteinerPoints)
+{
+  Surface s = twistedTower(3, 6, 0.5);
+  MesherResult r = meshAndCheck(s, allOutward(s), 1);
+  EXPECT_GE(r.steinerPoints, 1);
+  Surface hexagons = twistedTower(6, 8, 0.35, 0.3);
+  jitter(hexagons, 0.01, 4242);
+  meshAndCheck(hexagons, allOutward(hexagons), 1);
 }
 
 TEST(BoundaryMesh, JitteredIcosphere)
