@@ -467,7 +467,11 @@ InsertResult insertImpl(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspac
     if (hint < 0)
       return { InsertStatus::OutsideMesh, -1, -1 };
   }
-  const TetId t = walk(mesh, p, hint, ws.rng);
+  TetId t = walk(mesh, p, hint, ws.rng);
+  // A walk that reaches the hull proves p outside only for a convex triangulation (the box);
+  // once exterior tets are gone the domain may be non-convex, so look everywhere.
+  if (t < 0 && Checked)
+    t = exhaustiveLocate(mesh, p);
   if (t < 0)
     return { InsertStatus::OutsideMesh, -1, -1 };
   for (int k = 0; k < 4; ++k)
@@ -535,7 +539,8 @@ TetId locatePoint(const TetMesh& mesh, const double* p, TetId hint)
   if (hint < 0 || hint >= mesh.tetCapacity() || mesh.isDeleted(hint))
     return exhaustiveLocate(mesh, p);
   std::uint64_t rng = kWalkSeed;
-  return walk(mesh, p, hint, rng);
+  const TetId t = walk(mesh, p, hint, rng);
+  return t >= 0 ? t : exhaustiveLocate(mesh, p); // non-convex meshes: see insertImpl
 }
 
 DelaunayResult buildDelaunay(TetMesh& mesh, const DelaunayOptions& options)

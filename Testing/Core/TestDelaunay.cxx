@@ -367,3 +367,60 @@ TEST(Delaunay, InsertVertexIntoDelaunayKeepsItDelaunay)
   EXPECT_EQ(validateDelaunayMesh(mesh, mesh.vertexCount() - 2, {}), "");
   EXPECT_GE(locatePoint(mesh, mesh.point(3), 0), 0);
 }
+
+TEST(Delaunay, InsertVertexInNonConvexMesh)
+{
+  // Keep only the tets of a 5^3 grid mesh inside an L-shaped region (the exterior and a
+  // notch removed, as after exterior removal), then insert points from a far hint: the walk
+  // can run into the notch's hull faces and must still find the point.
+  TetMesh mesh = gridPoints(5);
+  DelaunayResult r = buildDelaunay(mesh);
+  ASSERT_TRUE(r.ok);
+  auto centroid = [&mesh](TetId t, int k)
+  {
+    double c = 0;
+    for (int i = 0; i < 4; ++i)
+      c += mesh.point(mesh.vertex(t, i))[k] / 4;
+    return c;
+  };
+  std::vector<char> removed(static_cast<std::size_t>(mesh.tetCapacity()), 0);
+  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+  {
+    bool box = false;
+    for (int i = 0; i < 4; ++i)
+      box = box || mesh.vertex(t, i) >= r.firstBoxVertex;
+    removed[t] = box || (centroid(t, 0) > 2 && centroid(t, 1) > 2);
+  }
+  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+  {
+    if (!removed[t])
+    {
+      for (int f = 0; f < 4; ++f)
+      {
+        const FaceRef n = mesh.neighbor(t, f);
+        if (n != kNoNeighbor && removed[faceTet(n)])
+          mesh.setHull(t, f);
+      }
+    }
+  }
+  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+    if (removed[t])
+      mesh.deleteTet(t);
+  ASSERT_EQ(checkAdjacency(mesh), "");
+  TetId hint = -1;
+  for (TetId t = 0; t < mesh.tetCapacity() && hint < 0; ++t)
+    if (!mesh.isDeleted(t) && centroid(t, 0) < 1 && centroid(t, 1) > 3)
+      hint = t;
+  ASSERT_GE(hint, 0);
+  InsertionWorkspace* ws = createInsertionWorkspace();
+  const VertexId v = mesh.addVertex(3.3, 0.7, 2.2); // across the notch from the hint
+  InsertResult ir = insertVertex(mesh, v, hint, *ws);
+  EXPECT_EQ(ir.status, InsertStatus::Inserted);
+  const VertexId inNotch = mesh.addVertex(3.5, 3.5, 2.5);
+  EXPECT_EQ(insertVertex(mesh, inNotch, hint, *ws).status, InsertStatus::OutsideMesh);
+  destroyInsertionWorkspace(ws);
+  EXPECT_EQ(checkOrientation(mesh), "");
+  EXPECT_EQ(checkAdjacency(mesh), "");
+  EXPECT_EQ(locatePoint(mesh, mesh.point(inNotch), hint), -1);
+  EXPECT_GE(locatePoint(mesh, mesh.point(v), hint), 0);
+}
