@@ -21,6 +21,7 @@
 #include "vtkPolygon.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
 #include "vtkTable.h"
 #include "vtkUnstructuredGrid.h"
 
@@ -60,6 +61,92 @@ struct FaceKeyHash
   }
 };
 
+// The input cells and points named by the diagnosis, for users to see them (ParaView: colour
+// output 2 by DefectKind). Triangles become polygons, lone points vertices; cell data
+// DefectKind (the SurfaceDefect value), DefectRecord (which record), InputCellId; field data
+// DefectSummary (the text of the error).
+void FillDefects(const tetmesher::SurfaceDiagnosis& diagnosis, vtkPolyData* input,
+  const std::vector<vtkIdType>& cellOfTriangle, vtkPolyData* defects)
+{
+  defects->Initialize();
+  if (diagnosis.defects.empty())
+  {
+    return;
+  }
+  defects->SetPoints(input->GetPoints());
+  vtkNew<vtkCellArray> polys, verts;
+  vtkNew<vtkIntArray> polyKind, vertKind, polyRecord, vertRecord;
+  vtkNew<vtkIdTypeArray> polyCell, vertCell;
+  vtkNew<vtkIdList> ids;
+  for (std::size_t r = 0; r < diagnosis.defects.size(); ++r)
+  {
+    const tetmesher::DefectRecord& record = diagnosis.defects[r];
+    const int kind = static_cast<int>(record.kind);
+    if (!record.triangleIds.empty())
+    {
+      for (std::int32_t tri : record.triangleIds)
+      {
+        if (tri < 0 || static_cast<std::size_t>(tri) >= cellOfTriangle.size())
+        {
+          continue;
+        }
+        const vtkIdType cell = cellOfTriangle[static_cast<std::size_t>(tri)];
+        input->GetCellPoints(cell, ids);
+        polys->InsertNextCell(ids);
+        polyKind->InsertNextValue(kind);
+        polyRecord->InsertNextValue(static_cast<int>(r));
+        polyCell->InsertNextValue(cell);
+      }
+    }
+    else
+    {
+      for (std::int32_t point : record.pointIds)
+      {
+        if (point < 0 || point >= input->GetNumberOfPoints())
+        {
+          continue;
+        }
+        const vtkIdType id = point;
+        verts->InsertNextCell(1, &id);
+        vertKind->InsertNextValue(kind);
+        vertRecord->InsertNextValue(static_cast<int>(r));
+        vertCell->InsertNextValue(-1);
+      }
+    }
+  }
+  defects->SetVerts(verts);
+  defects->SetPolys(polys);
+  // vtkPolyData orders cells verts first, then polys: so must the cell arrays.
+  vtkNew<vtkIntArray> kinds, records;
+  vtkNew<vtkIdTypeArray> cells;
+  kinds->SetName("DefectKind");
+  records->SetName("DefectRecord");
+  cells->SetName("InputCellId");
+  for (vtkIntArray* part : { vertKind.Get(), polyKind.Get() })
+    for (vtkIdType i = 0; i < part->GetNumberOfTuples(); ++i)
+      kinds->InsertNextValue(part->GetValue(i));
+  for (vtkIntArray* part : { vertRecord.Get(), polyRecord.Get() })
+    for (vtkIdType i = 0; i < part->GetNumberOfTuples(); ++i)
+      records->InsertNextValue(part->GetValue(i));
+  for (vtkIdTypeArray* part : { vertCell.Get(), polyCell.Get() })
+    for (vtkIdType i = 0; i < part->GetNumberOfTuples(); ++i)
+      cells->InsertNextValue(part->GetValue(i));
+  vtkNew<vtkStringArray> labels; // readable and categorical in ParaView's colour map
+  labels->SetName("Defect");
+  for (vtkIdType i = 0; i < kinds->GetNumberOfTuples(); ++i)
+    labels->InsertNextValue(
+      tetmesher::defectLabel(static_cast<tetmesher::SurfaceDefect>(kinds->GetValue(i)), false));
+  defects->GetCellData()->AddArray(labels);
+  defects->GetCellData()->AddArray(kinds);
+  defects->GetCellData()->AddArray(records);
+  defects->GetCellData()->AddArray(cells);
+  defects->GetCellData()->SetActiveScalars("DefectKind");
+  vtkNew<vtkStringArray> summary;
+  summary->SetName("DefectSummary");
+  summary->InsertNextValue(diagnosis.summary(10));
+  defects->GetFieldData()->AddArray(summary);
+}
+
 void AddScalar(vtkFieldData* fieldData, const char* name, double value)
 {
   vtkNew<vtkDoubleArray> array;
@@ -72,7 +159,7 @@ void AddScalar(vtkFieldData* fieldData, const char* name, double value)
 
 vtkTetMesher::vtkTetMesher()
 {
-  this->SetNumberOfOutputPorts(2);
+  this->SetNumberOfOutputPorts(3);
 }
 
 vtkTetMesher::~vtkTetMesher() = default;
@@ -93,6 +180,11 @@ vtkTable* vtkTetMesher::GetHistogramOutput()
   return vtkTable::SafeDownCast(this->GetOutputDataObject(1));
 }
 
+vtkPolyData* vtkTetMesher::GetDefectsOutput()
+{
+  return vtkPolyData::SafeDownCast(this->GetOutputDataObject(2));
+}
+
 int vtkTetMesher::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
@@ -106,6 +198,11 @@ int vtkTetMesher::FillOutputPortInformation(int port, vtkInformation* info)
     info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkTable");
     return 1;
   }
+  if (port == 2)
+  {
+    info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkPolyData");
+    return 1;
+  }
   return this->Superclass::FillOutputPortInformation(port, info);
 }
 
@@ -115,6 +212,7 @@ int vtkTetMesher::RequestData(
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
   vtkTable* histogram = vtkTable::GetData(outputVector, 1);
+  vtkPolyData* defects = vtkPolyData::GetData(outputVector, 2);
   this->LastError.clear();
   auto fail = [this](const std::string& message) {
     this->LastError = message;
@@ -197,12 +295,14 @@ int vtkTetMesher::RequestData(
   }
   const auto triangleCount = static_cast<std::int32_t>(triangles.size() / 3);
 
+  defects->Initialize();
   if (this->CheckInput)
   {
     tetmesher::DiagnosisOptions diagnosisOptions;
     diagnosisOptions.maxRecordsPerKind = 1000;
     tetmesher::SurfaceDiagnosis diagnosis = tetmesher::diagnoseSurface(coords.data(),
       static_cast<std::int32_t>(pointCount), triangles.data(), triangleCount, diagnosisOptions);
+    FillDefects(diagnosis, input, cellOfTriangle, defects);
     if (!diagnosis.ok())
     {
       std::string summary = diagnosis.summary(10);

@@ -19,6 +19,7 @@
  * opposite its point i, the input cell id of the triangle it lies on, or -1). Field data:
  * the quality summary and `SteinerPointCount`, `RegionCount`.
  * Output 1: the histogram of Q as a vtkTable (as vtkTetQuality).
+ * Output 2: the input defects found by the check, to look at (see GetDefectsOutput).
  *
  * Today the output is the boundary mesh (the paper's figure 2): interior point creation
  * (size field) and quality optimisation are not implemented yet.
@@ -31,6 +32,7 @@
 
 #include <string> // for LastError
 
+class vtkPolyData;
 class vtkTable;
 
 class VTKFILTERSTETMESHER_EXPORT vtkTetMesher : public vtkUnstructuredGridAlgorithm
@@ -104,6 +106,13 @@ public:
   const char* GetLastError() { return this->LastError.c_str(); }
 
   vtkTable* GetHistogramOutput();
+
+  /**
+   * Output 2: what the input check found, to look at: the defective input triangles
+   * (polygons) and points (vertices), cell data `DefectKind`, `DefectRecord`, `InputCellId`,
+   * field data `DefectSummary`. Empty when the surface is good or CheckInput is off.
+   */
+  vtkPolyData* GetDefectsOutput();
 
 protected:
   vtkTetMesher();

@@ -98,6 +98,20 @@ elif mesher.GetOutput().GetNumberOfCells() != 0:
     failures.append("open surface: a partial mesh was returned")
 else:
     print("open surface refused:", errors[0].splitlines()[1][:100])
+    # The defects output shows the triangles on the open edges, by input cell id.
+    defects = mesher.GetDefectsOutput()
+    labels = defects.GetCellData().GetAbstractArray("Defect")
+    cells = vtk_to_numpy(defects.GetCellData().GetArray("InputCellId"))
+    if defects.GetNumberOfCells() == 0 or any(labels.GetValue(i) != "open edge" for i in range(labels.GetNumberOfValues())):
+        failures.append("open surface: the defects output does not show the open edges")
+    # Removing triangle 0 opened the edges of its 3 neighbours; their ids (in the shortened
+    # list) are what the output names.
+    removed = set(int(v) for v in triangles[0])
+    for c in cells:
+        if len(removed & set(int(v) for v in triangles[1:][c])) < 2:
+            failures.append(f"defects output names triangle {c}, not next to the hole")
+    if mesher.GetLastError().find("open edge") < 0:
+        failures.append("GetLastError() does not name the open edges")
 
 if failures:
     print("\n".join(failures))
