@@ -5,13 +5,18 @@
 //  1. each missing input edge, then each missing input face (whose edges exist), is recovered
 //     by 2-3 flips and edge removals (n -> 2n-4, including 3-2 and 4-4) chosen greedily; a
 //     move is kept only if it strictly lowers an exact integer measure of how much of the mesh
-//     the missing item cuts through (tets, faces and edges it crosses), so flipping ends;
+//     the missing item cuts through (tets, faces and edges it meets), so flipping ends. When
+//     no move lowers it, the shell of an edge cutting the item is shrunk by 2-3 flips, or one
+//     cost-neutral move is kept if it enables an improving one (one-move lookahead). A stuck
+//     edge is retried with its input triangles added to the measure;
 //  2. recovered faces are flagged constrained on both sides, so no later flip or insertion
 //     removes them;
-//  3. when flips are stuck, one Steiner point is inserted at the centroid of a tet the missing
-//     item cuts through (never on the input surface: checked exactly), by constrained
-//     Delaunay insertion, and the next round starts.
-// Work is bounded by the Steiner budget: an item still missing then is reported by id.
+//  3. items still missing get one Steiner point each, by constrained Delaunay insertion
+//     (insertVertex), at a position strictly inside a tet the item cuts: next to the middle
+//     of a mesh edge crossing it (the cavity then swallows that edge's shell), else a tet
+//     centroid. A position on the input surface is never used (exact test). Next round.
+// Work is bounded: per item (maxSteinerPerItem), in total (maxSteinerPoints) and per flip
+// search (maxMovesPerItem); an item still missing then is reported by its id.
 #pragma once
 
 #include "SurfaceInput.h"

@@ -2,6 +2,7 @@
 
 #include "Predicates.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace tetmesher
@@ -81,40 +82,58 @@ bool segmentsCross(const double* a, const double* b, const double* p, const doub
 
 bool simplexMeetsTetInterior(const double* const* points, int count, const double* const t[4])
 {
-  // Two convex sets are disjoint iff a plane separates them (closed sides); such a plane can
-  // be rotated until it passes through three of the points. Try them all.
-  const double* all[7];
-  int n = 0;
-  for (int i = 0; i < count; ++i)
-    all[n++] = points[i];
-  for (int i = 0; i < 4; ++i)
-    all[n++] = t[i];
-  for (int i = 0; i < n; ++i)
+  // Disjoint bounding boxes separate the sets (exact comparisons).
+  for (int k = 0; k < 3; ++k)
   {
-    for (int j = i + 1; j < n; ++j)
+    double sMin = points[0][k], sMax = points[0][k];
+    for (int i = 1; i < count; ++i)
     {
-      for (int k = j + 1; k < n; ++k)
+      sMin = std::min(sMin, points[i][k]);
+      sMax = std::max(sMax, points[i][k]);
+    }
+    double tMin = std::min({ t[0][k], t[1][k], t[2][k], t[3][k] });
+    double tMax = std::max({ t[0][k], t[1][k], t[2][k], t[3][k] });
+    if (sMax <= tMin || sMin >= tMax)
+      return false;
+  }
+  // Two convex sets are disjoint iff a plane separates them (closed sides); such a plane can
+  // be rotated until it passes through three of the points. Try them all, the tet's own
+  // faces first (they separate most often).
+  const double* all[7] = { t[0], t[1], t[2], t[3] };
+  const int n = 4 + count;
+  for (int i = 0; i < count; ++i)
+    all[4 + i] = points[i];
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      for (int j = i + 1; j < n; ++j)
       {
-        int simplexSide = 0;
-        int tetSide = 0;
-        bool separates = true;
-        bool degenerate = true;
-        for (int m = 0; m < n && separates; ++m)
+        for (int k = j + 1; k < n; ++k)
         {
-          int s = orient3d(all[i], all[j], all[k], all[m]);
-          if (s == 0)
+          if ((k < 4) != (pass == 0))
             continue;
-          degenerate = false;
-          int& side = m < count ? simplexSide : tetSide;
-          if (side == 0)
-            side = s;
-          else if (side != s)
-            separates = false;
+          int simplexSide = 0;
+          int tetSide = 0;
+          bool separates = true;
+          bool degenerate = true;
+          for (int m = 0; m < n && separates; ++m)
+          {
+            int s = orient3d(all[i], all[j], all[k], all[m]);
+            if (s == 0)
+              continue;
+            degenerate = false;
+            int& side = m >= 4 ? simplexSide : tetSide;
+            if (side == 0)
+              side = s;
+            else if (side != s)
+              separates = false;
+          }
+          if (degenerate || !separates)
+            continue;
+          if (simplexSide == 0 || tetSide == 0 || simplexSide != tetSide)
+            return false;
         }
-        if (degenerate || !separates)
-          continue;
-        if (simplexSide == 0 || tetSide == 0 || simplexSide != tetSide)
-          return false;
       }
     }
   }
