@@ -44,9 +44,9 @@ void destroyInsertionWorkspace(InsertionWorkspace* workspace);
 enum class InsertStatus
 {
   Inserted,
-  Duplicate,        // an existing vertex has the same coordinates
-  OnConstraint,     // the point lies exactly on a constrained face: not inserted
-  OutsideMesh       // the walk left the triangulation (point outside the box)
+  Duplicate,    // an existing vertex has the same coordinates
+  OnConstraint, // the point lies exactly on a constrained face: not inserted
+  OutsideMesh   // the walk left the triangulation (point outside the box)
 };
 
 struct InsertResult
@@ -61,7 +61,10 @@ struct InsertResult
 // (insphereSoS), grown by adjacency from the tet containing v, never across a constrained
 // face (TetMesh flags), and shrunk until v sees every cavity boundary face strictly
 // positively, so the result is valid even when constraints make it non-Delaunay. Constraint
-// flags on the cavity boundary are preserved.
+// flags on the cavity boundary are preserved. A point on a constrained face or edge (or on
+// the hull of the mesh) is refused with OnConstraint; the mesh is then unchanged. If the walk
+// reaches the hull (a non-convex mesh), the point is searched exhaustively before
+// OutsideMesh is returned. Uses scratch bits 0 and 1 of mesh.flags and clears them again.
 InsertResult insertVertex(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspace& workspace);
 
 // Locates the live tet containing point p (exact walk that terminates), starting at hint.

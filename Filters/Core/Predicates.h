@@ -20,13 +20,19 @@ int orient3d(const double* a, const double* b, const double* c, const double* d)
 int insphere(const double* a, const double* b, const double* c, const double* d, const double* e);
 
 // Sign of the 2D orientation of a,b,c projected on the coordinate plane that drops axis
-// `dropAxis` (0,1,2). Exact. Used for coplanar configurations.
+// `dropAxis` (0,1,2). Exact. Used for coplanar configurations. The remaining axes are taken
+// in cyclic order (drop z: (x,y); drop x: (y,z); drop y: (z,x)), so the sign is the sign of
+// the dropped-axis component of the normal (b-a)x(c-a).
 int orient2d(const double* a, const double* b, const double* c, int dropAxis);
 
 // In-sphere with symbolic perturbation (simulation of simplicity on the lifted points, by
 // vertex id): never returns 0 for five distinct points, and is consistent, so co-spherical
 // input (grids, boxes) gives one well-defined Delaunay triangulation. Points are looked up
 // in mesh.coords by id; (a,b,c,d) must be positively oriented.
+// The rule (Edelsbrunner-Muecke): vertex i's lifted coordinate |p_i|^2 is raised by
+// eps^(K - i), so the largest id is perturbed most. On an exact tie the answer is the sign of
+// the first non-zero cofactor by decreasing id: -orient3d(a,b,c,d) for e, and for a vertex x
+// of (a,b,c,d), orient3d of (a,b,c,d) with x replaced by e. See Predicates.cxx.
 int insphereSoS(const TetMesh& mesh, VertexId a, VertexId b, VertexId c, VertexId d, VertexId e);
 
 } // namespace predicates
