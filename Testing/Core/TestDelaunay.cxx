@@ -424,3 +424,41 @@ TEST(Delaunay, InsertVertexInNonConvexMesh)
   EXPECT_EQ(locatePoint(mesh, mesh.point(inNotch), hint), -1);
   EXPECT_GE(locatePoint(mesh, mesh.point(v), hint), 0);
 }
+
+TEST(Delaunay, CoplanarAndCollinearInput)
+{
+  // Flat input: every point on z = 0 (random and on a 2D grid), and points on one line.
+  TetMesh flat;
+  std::mt19937_64 gen(8);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int i = 0; i < 3000; ++i)
+    flat.addVertex(u(gen), u(gen), 0.0);
+  for (int i = 0; i < 30; ++i)
+    for (int j = 0; j < 30; ++j)
+      flat.addVertex(2 + i, j, 0.0);
+  buildAndValidate(flat);
+  TetMesh line;
+  for (int i = 0; i < 500; ++i)
+    line.addVertex(0.5 * i, 0.25 * i, -0.125 * i);
+  buildAndValidate(line);
+}
+
+TEST(Delaunay, ScalingByPowersOfTwoGivesTheSameMesh)
+{
+  // Exact predicates are invariant under exact scaling (no underflow or overflow here),
+  // so the tets must be identical.
+  const TetMesh base = randomPoints(5000, 31);
+  TetMesh reference = base;
+  ASSERT_TRUE(buildDelaunay(reference).ok);
+  for (int exponent : { -60, 60 })
+  {
+    TetMesh scaled = base;
+    for (double& c : scaled.coords)
+      c = std::ldexp(c, exponent);
+    DelaunayOptions options;
+    options.validate = true;
+    const DelaunayResult r = buildDelaunay(scaled, options);
+    ASSERT_TRUE(r.ok) << r.error;
+    EXPECT_EQ(scaled.tets, reference.tets) << "exponent " << exponent;
+  }
+}
