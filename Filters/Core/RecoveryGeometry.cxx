@@ -3,7 +3,6 @@
 #include "Predicates.h"
 
 #include <algorithm>
-#include <cmath>
 
 namespace tetmesher
 {
@@ -158,60 +157,5 @@ bool pointInsideTet(const double* x, const double* const t[4])
     orient3d(t[1], t[3], t[2], x) > 0 && orient3d(t[0], t[2], t[3], x) > 0;
 }
 
-} // namespace geometry
-} // namespace tetmesher
-
-namespace tetmesher
-{
-namespace geometry
-{
-double pointTriangleDistance(const double* x, const double* a, const double* b, const double* c)
-{
-  auto sub = [](const double* u, const double* v, double* out)
-  {
-    for (int k = 0; k < 3; ++k)
-      out[k] = u[k] - v[k];
-  };
-  auto dot = [](const double* u, const double* v)
-  { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
-  double ab[3], ac[3], ax[3], bx[3], cx[3], closest[3];
-  sub(b, a, ab);
-  sub(c, a, ac);
-  sub(x, a, ax);
-  auto at = [&](double v, double w)
-  {
-    for (int k = 0; k < 3; ++k)
-      closest[k] = a[k] + v * ab[k] + w * ac[k];
-  };
-  double d1 = dot(ab, ax), d2 = dot(ac, ax);
-  sub(x, b, bx);
-  double d3 = dot(ab, bx), d4 = dot(ac, bx);
-  sub(x, c, cx);
-  double d5 = dot(ab, cx), d6 = dot(ac, cx);
-  double va = d3 * d6 - d5 * d4, vb = d5 * d2 - d1 * d6, vc = d1 * d4 - d3 * d2;
-  if (d1 <= 0 && d2 <= 0)
-    at(0, 0);
-  else if (d3 >= 0 && d4 <= d3)
-    at(1, 0);
-  else if (d6 >= 0 && d5 <= d6)
-    at(0, 1);
-  else if (vc <= 0 && d1 >= 0 && d3 <= 0)
-    at(d1 / (d1 - d3), 0);
-  else if (vb <= 0 && d2 >= 0 && d6 <= 0)
-    at(0, d2 / (d2 - d6));
-  else if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-  {
-    double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    at(1 - w, w);
-  }
-  else
-  {
-    double denom = va + vb + vc;
-    at(vb / denom, vc / denom);
-  }
-  double d[3];
-  sub(x, closest, d);
-  return std::sqrt(dot(d, d));
-}
 } // namespace geometry
 } // namespace tetmesher

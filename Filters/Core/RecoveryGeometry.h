@@ -34,14 +34,3 @@ bool pointInsideTet(const double* x, const double* const t[4]);
 
 } // namespace geometry
 } // namespace tetmesher
-
-namespace tetmesher
-{
-namespace geometry
-{
-// Euclidean distance from x to the closed triangle abc, in floating point (Ericson's
-// closest-point walk). Only for heuristics, such as keeping Steiner points away from the
-// surface; never for a topological decision.
-double pointTriangleDistance(const double* x, const double* a, const double* b, const double* c);
-} // namespace geometry
-} // namespace tetmesher

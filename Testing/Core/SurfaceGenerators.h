@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <set>
 #include <tuple>
 #include <vector>
 
@@ -352,6 +353,52 @@ inline void jitter(Surface& s, double amount, std::uint64_t seed)
   };
   for (double& x : s.points)
     x += amount * next();
+}
+
+// A k x k x k block of unit cubes, each a region of its own: every shared square appears once,
+// so inner edges have 3 or 4 triangles. `outer` marks the triangles on the block's boundary.
+inline Surface cubeBlocks(int k, std::vector<char>& outer)
+{
+  Surface s;
+  std::map<std::array<int, 3>, std::int32_t> ids;
+  std::set<std::array<std::int32_t, 3>> seen;
+  outer.clear();
+  for (int x = 0; x < k; ++x)
+    for (int y = 0; y < k; ++y)
+      for (int z = 0; z < k; ++z)
+      {
+        Surface c = box({ double(x), double(y), double(z) },
+          { double(x + 1), double(y + 1), double(z + 1) },
+          { 1, 1, 1 },
+          false);
+        for (std::int32_t t = 0; t < c.triangleCount(); ++t)
+        {
+          std::array<std::int32_t, 3> v;
+          std::array<int, 3> lo = { k, k, k }, hi = { 0, 0, 0 };
+          for (int m = 0; m < 3; ++m)
+          {
+            const double* p = &c.points[3 * c.triangles[3 * t + m]];
+            std::array<int, 3> g = { int(p[0]), int(p[1]), int(p[2]) };
+            auto it = ids.find(g);
+            v[m] = it != ids.end() ? it->second : (ids[g] = s.addPoint(p[0], p[1], p[2]));
+            for (int a = 0; a < 3; ++a)
+            {
+              lo[a] = std::min(lo[a], g[a]);
+              hi[a] = std::max(hi[a], g[a]);
+            }
+          }
+          std::array<std::int32_t, 3> key = v;
+          std::sort(key.begin(), key.end());
+          if (!seen.insert(key).second)
+            continue;
+          bool onBoundary = false;
+          for (int a = 0; a < 3; ++a)
+            onBoundary = onBoundary || (lo[a] == hi[a] && (lo[a] == 0 || lo[a] == k));
+          s.addTriangle(v[0], v[1], v[2]);
+          outer.push_back(onBoundary);
+        }
+      }
+  return s;
 }
 
 // Two unit cubes sharing the face x=1 (a multi-material surface: the shared face's edges

@@ -173,6 +173,31 @@ TEST(BoundaryMesh, TwoCubesSharingAFace)
   meshAndCheck(s, sign, 2);
 }
 
+TEST(BoundaryMesh, CubeBlocksManyMaterials)
+{
+  // 2x2x2 and 3x3x3 unit cubes, one region each: edges with 3 and 4 triangles, interface
+  // triangles between two regions. Outer boundary triangles give the total volume.
+  for (int k : { 2, 3 })
+  {
+    std::vector<char> outer;
+    Surface s = cubeBlocks(k, outer);
+    std::vector<int> sign(outer.begin(), outer.end());
+    // Outward orientation of the outer triangles: box() oriented each cube outward, and an
+    // outer triangle keeps its cube's orientation.
+    meshAndCheck(s, sign, k * k * k);
+  }
+}
+
+TEST(BoundaryMesh, SphereInsideTorusTube)
+{
+  Surface s = torus(1.0, 0.5, 16, 8);
+  std::int32_t outer = s.triangleCount();
+  s.append(icosphere(1, 0.2, { 1, 0, 0 }));
+  std::vector<int> sign(s.triangleCount(), 0);
+  std::fill(sign.begin(), sign.begin() + outer, 1);
+  meshAndCheck(s, sign, 2);
+}
+
 TEST(BoundaryMesh, Deterministic)
 {
   Surface s = icosphere(3);
