@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 
 using namespace tetmesher;
@@ -249,4 +250,36 @@ TEST(BoundaryMesh, RefusesSelfIntersectingSurface)
   r = meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), options);
   EXPECT_FALSE(r.ok);
   EXPECT_NE(r.error.find("could not recover input"), std::string::npos) << r.error;
+}
+
+TEST(BoundaryMesh, ChecksCatchBrokenMeshes)
+{
+  // The exact checks must be able to fail: corrupt a good result in several ways.
+  Surface s = icosphere(1);
+  std::vector<int> sign = allOutward(s);
+  MesherResult good =
+    meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount());
+  ASSERT_EQ(checkMesh(s, good, sign, 1), "");
+
+  MesherResult inverted = good;
+  std::swap(inverted.tets[0], inverted.tets[1]);
+  EXPECT_NE(checkMesh(s, inverted, sign, 1), "");
+
+  MesherResult missingTet = good;
+  missingTet.tets.resize(missingTet.tets.size() - 4);
+  missingTet.regionIds.pop_back();
+  EXPECT_NE(checkMesh(s, missingTet, sign, 1), "");
+
+  MesherResult moved = good;
+  moved.points[0] = std::nextafter(moved.points[0], 10.0);
+  EXPECT_NE(checkMesh(s, moved, sign, 1), "");
+
+  // A "Steiner point" placed exactly on an input triangle (its first vertex's copy).
+  MesherResult onSurface = good;
+  for (int k = 0; k < 3; ++k)
+    onSurface.points.push_back(s.points[3 * s.triangles[0] + k]);
+  onSurface.steinerPoints += 1;
+  EXPECT_NE(checkMesh(s, onSurface, sign, 1), "");
+
+  EXPECT_NE(checkMesh(s, good, sign, 2), ""); // wrong region count
 }
