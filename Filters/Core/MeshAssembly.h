@@ -1,0 +1,36 @@
+// Conversion between the flat output arrays of a stage (points, 4 ids per tet, a region per
+// tet) and a TetMesh with adjacency, so that later stages (interior refinement, quality
+// optimisation) work on the mesh the boundary stage produced, with its boundary locked.
+#pragma once
+
+#include "TetMesh.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace tetmesher
+{
+
+// A tet mesh plus the region of each tet slot (kept in step by the stages that edit it).
+struct RegionMesh
+{
+  TetMesh mesh;
+  std::vector<std::int32_t> region; // per tet slot; meaningless for deleted slots
+};
+
+// Builds the adjacency of `tets` (positively oriented in TetMesh's convention). Faces with
+// no neighbour (the boundary) and faces between tets of different regions (interfaces) are
+// marked constrained on both sides, so insertions and flips never cross or change them.
+// Returns false if a face is shared by more than two tets.
+bool assembleRegionMesh(const std::vector<double>& points,
+  const std::vector<std::int32_t>& tets,
+  const std::vector<std::int32_t>& regionIds,
+  RegionMesh& out);
+
+// Writes the live tets of `in` back to flat arrays (deleted slots dropped, vertex ids kept).
+void extractRegionMesh(const RegionMesh& in,
+  std::vector<double>& points,
+  std::vector<std::int32_t>& tets,
+  std::vector<std::int32_t>& regionIds);
+
+} // namespace tetmesher
