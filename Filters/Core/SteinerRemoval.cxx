@@ -71,11 +71,13 @@ bool removeVertex(TetMesh& mesh, VertexTetIndex& index, VertexId v)
           break;
         }
       }
-      if (edgeRemovalCandidate(mesh, t, v, w, noCost, candidate) &&
-        (!found || candidate.minQuality > best.minQuality))
+      // The first removable edge will do (shape is the optimiser's business); taking the
+      // best of all costs a DP per neighbour at every step.
+      if (edgeRemovalCandidate(mesh, t, v, w, noCost, candidate))
       {
         best = candidate;
         found = true;
+        break;
       }
     }
     if (!found)
