@@ -192,14 +192,14 @@ int insphereExtended(const double* a,
 // Third stage, for exactly degenerate input on a lattice (grids, integer coordinates, or
 // any coordinates whose differences are small multiples of a common power of two): if
 // every coordinate difference is exact and, after an exact power-of-two scaling, an integer
-// below 2^bits, then every intermediate value of the determinant is an integer below 2^64
-// and the extended-precision evaluation is exact, zero included. Bits: insphere needs
-// 72 * 2^(5 bits) < 2^64 (bits = 11); orient3d needs 6 * 2^(3 bits) < 2^64 (bits = 20).
+// below 2^bits, then every intermediate value of the determinant is an integer below 2^63
+// and a 64-bit integer evaluation is exact, zero included. Bits: insphere needs
+// 72 * 2^(5 bits) < 2^63 (bits = 11); orient3d needs 6 * 2^(3 bits) < 2^63 (bits = 20).
 bool scaledIntegerDifferences(const double* const* points,
   int count,
   const double* origin,
   int bits,
-  long double (*out)[3])
+  long long (*out)[3])
 {
   double diff[5][3];
   double maxAbs = 0;
@@ -211,8 +211,28 @@ bool scaledIntegerDifferences(const double* const* points,
       if (y != 0.0)
         return false;
       diff[i][k] = x;
-      maxAbs = std::max(maxAbs, std::fabs(x));
+      if (!(std::fabs(x) <= maxAbs)) // written so that a NaN propagates and fails below
+        maxAbs = std::fabs(x);
     }
+  // |x| < 2^bits <= 2^20 here, so the int64 round trip is an exact integrality test
+  // (cheaper than std::trunc, which is a library call without SSE4.1).
+  auto isInteger = [](double x) { return x == static_cast<double>(static_cast<long long>(x)); };
+  const double limit = std::ldexp(1.0, bits);
+  if (maxAbs < limit)
+  {
+    // Common case (integer coordinates, e.g. grids): no scaling needed.
+    bool integral = true;
+    for (int i = 0; i < count && integral; ++i)
+      for (int k = 0; k < 3; ++k)
+        integral = integral && isInteger(diff[i][k]);
+    if (integral)
+    {
+      for (int i = 0; i < count; ++i)
+        for (int k = 0; k < 3; ++k)
+          out[i][k] = static_cast<long long>(diff[i][k]);
+      return true;
+    }
+  }
   int exponent = 0;
   std::frexp(maxAbs, &exponent); // maxAbs < 2^exponent
   // Multiplying by a power of two is exact unless it overflows or underflows, which the
@@ -223,9 +243,9 @@ bool scaledIntegerDifferences(const double* const* points,
     for (int k = 0; k < 3; ++k)
     {
       const double s = diff[i][k] * scale;
-      if (s != std::trunc(s) || s * inverse != diff[i][k])
+      if (!(std::fabs(s) < limit) || !isInteger(s) || s * inverse != diff[i][k])
         return false;
-      out[i][k] = s;
+      out[i][k] = static_cast<long long>(s);
     }
   return true;
 }
@@ -234,10 +254,10 @@ bool scaledIntegerDifferences(const double* const* points,
 int orient3dLattice(const double* a, const double* b, const double* c, const double* d)
 {
   const double* const pts[3] = { a, b, c };
-  long double m[3][3];
+  long long m[3][3];
   if (!scaledIntegerDifferences(pts, 3, d, 20, m))
     return 0;
-  const long double det = m[0][2] * (m[1][0] * m[2][1] - m[2][0] * m[1][1]) +
+  const long long det = m[0][2] * (m[1][0] * m[2][1] - m[2][0] * m[1][1]) +
     m[1][2] * (m[2][0] * m[0][1] - m[0][0] * m[2][1]) +
     m[2][2] * (m[0][0] * m[1][1] - m[1][0] * m[0][1]);
   return 2 + (det > 0) - (det < 0);
@@ -250,10 +270,10 @@ int insphereLattice(const double* a,
   const double* e)
 {
   const double* const pts[4] = { a, b, c, d };
-  long double m[4][3];
+  long long m[4][3];
   if (!scaledIntegerDifferences(pts, 4, e, 11, m))
     return 0;
-  using L = long double;
+  using L = long long;
   const L ab = m[0][0] * m[1][1] - m[1][0] * m[0][1];
   const L bc = m[1][0] * m[2][1] - m[2][0] * m[1][1];
   const L cd = m[2][0] * m[3][1] - m[3][0] * m[2][1];
@@ -280,10 +300,10 @@ inline int decodeLattice(int code)
 
 int orient3dExact(const double* a, const double* b, const double* c, const double* d)
 {
+  if (const int code = orient3dLattice(a, b, c, d))
+    return decodeLattice(code);
   if (kHasExtendedStage)
   {
-    if (const int code = orient3dLattice(a, b, c, d))
-      return decodeLattice(code);
     const int s = orient3dExtended(a, b, c, d);
     if (s != 0)
       return s;
@@ -311,10 +331,10 @@ int insphereExact(const double* a,
   const double* d,
   const double* e)
 {
+  if (const int code = insphereLattice(a, b, c, d, e))
+    return decodeLattice(code);
   if (kHasExtendedStage)
   {
-    if (const int code = insphereLattice(a, b, c, d, e))
-      return decodeLattice(code);
     const int s = insphereExtended(a, b, c, d, e);
     if (s != 0)
       return s;
