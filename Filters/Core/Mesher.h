@@ -18,10 +18,13 @@ namespace tetmesher
 
 struct MesherOptions
 {
-  // Components enclosed by a region (e.g. inside the inner of two nested spheres... the
-  // space between shells at even depth) become holes instead of regions of their own.
+  // Nesting depth of a component = number of input surfaces crossed to reach it from the
+  // outside. By default every component at depth >= 1 is a region (two nested spheres: the
+  // shell and the inner ball, 2 regions). When set, components at even depth (the inner ball)
+  // are holes and dropped. Side-by-side materials (shared faces) all have depth 1.
   bool enclosedShellsAreHoles = false;
-  // Budget of recovery Steiner points; -1: 100 + 4 per input triangle.
+  // Budget of recovery Steiner points; -1: 100 + 4 per input triangle. An item still missing
+  // after 16 Steiner points near it also ends the run (error naming it).
   int maxSteinerPoints = -1;
   // Bound on flips tried per missing edge/face and per round.
   int maxMovesPerItem = 500;
