@@ -52,7 +52,9 @@ public:
   {
     double progress = *static_cast<double*>(data);
     int filled = static_cast<int>(progress * 30);
-    std::fprintf(stderr, "\r[%-30s] %3d%%", std::string(static_cast<std::size_t>(filled), '#').c_str(),
+    std::fprintf(stderr,
+      "\r[%-30s] %3d%%",
+      std::string(static_cast<std::size_t>(filled), '#').c_str(),
       static_cast<int>(progress * 100));
     if (progress >= 1.0)
       std::fputs("\r\033[K", stderr);
@@ -97,16 +99,16 @@ int RunMesh(int argc, char* argv[])
       long value = std::strtol(argv[++i], &end, 10);
       if (*end != '\0' || value < -1 || value > 1000000000)
       {
-        std::fprintf(stderr, "tetmesher mesh: --max-steiner wants an integer >= -1, not '%s'\n",
-          argv[i]);
+        std::fprintf(
+          stderr, "tetmesher mesh: --max-steiner wants an integer >= -1, not '%s'\n", argv[i]);
         return 2;
       }
       maxSteiner = static_cast<int>(value);
     }
     else if (!arg.empty() && arg[0] == '-')
     {
-      std::fprintf(stderr, "tetmesher mesh: unknown or incomplete option '%s'\n\n%s", arg.c_str(),
-        kMeshUsage);
+      std::fprintf(
+        stderr, "tetmesher mesh: unknown or incomplete option '%s'\n\n%s", arg.c_str(), kMeshUsage);
       return 2;
     }
     else if (input.empty())
@@ -119,15 +121,19 @@ int RunMesh(int argc, char* argv[])
   }
   if (input.empty() || output.empty())
   {
-    std::fprintf(stderr, "tetmesher mesh: %s\n\n%s",
-      input.empty() ? "no input surface" : "no output file (-o OUT.vtu)", kMeshUsage);
+    std::fprintf(stderr,
+      "tetmesher mesh: %s\n\n%s",
+      input.empty() ? "no input surface" : "no output file (-o OUT.vtu)",
+      kMeshUsage);
     return 2;
   }
   const std::string outExt = LowerExtension(output);
   if (outExt != ".vtu" && outExt != ".vtk")
   {
-    std::fprintf(stderr, "tetmesher mesh: %s: unknown output type '%s' (use .vtu or .vtk)\n",
-      output.c_str(), outExt.c_str());
+    std::fprintf(stderr,
+      "tetmesher mesh: %s: unknown output type '%s' (use .vtu or .vtk)\n",
+      output.c_str(),
+      outExt.c_str());
     return 2;
   }
   try
@@ -154,12 +160,16 @@ int RunMesh(int argc, char* argv[])
     WriteVolumeMesh(mesh, output);
     std::printf("%s -> %s: %lld tetrahedra, %lld points (%d Steiner), %d region%s, Q min %.3f "
                 "mean %.3f, %.3f s\n",
-      input.c_str(), output.c_str(), static_cast<long long>(mesh->GetNumberOfCells()),
+      input.c_str(),
+      output.c_str(),
+      static_cast<long long>(mesh->GetNumberOfCells()),
       static_cast<long long>(mesh->GetNumberOfPoints()),
       static_cast<int>(Field(mesh, "SteinerPointCount")),
       static_cast<int>(Field(mesh, "RegionCount")),
-      Field(mesh, "RegionCount") == 1 ? "" : "s", Field(mesh, "QualityMinimum"),
-      Field(mesh, "QualityMean"), seconds);
+      Field(mesh, "RegionCount") == 1 ? "" : "s",
+      Field(mesh, "QualityMinimum"),
+      Field(mesh, "QualityMean"),
+      seconds);
     if (stats)
     {
       PrintQualityReport(stdout, output, mesh);

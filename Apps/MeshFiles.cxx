@@ -340,8 +340,8 @@ vtkSmartPointer<vtkUnstructuredGrid> ReadGmsh(const std::string& path)
     {
       long tag = tets[t + static_cast<std::size_t>(k)];
       if (tag <= 0 || tag > maxTag || idOfTag[static_cast<std::size_t>(tag)] < 0)
-        Fail(path, "tetrahedron " + std::to_string(t / 4) + " uses undefined node " +
-            std::to_string(tag));
+        Fail(path,
+          "tetrahedron " + std::to_string(t / 4) + " uses undefined node " + std::to_string(tag));
       v[k] = idOfTag[static_cast<std::size_t>(tag)];
     }
     grid->InsertNextCell(VTK_TETRA, 4, v);
@@ -420,7 +420,9 @@ std::string LowerExtension(const std::string& path)
     return "";
   }
   std::string ext = path.substr(dot);
-  std::transform(ext.begin(), ext.end(), ext.begin(),
+  std::transform(ext.begin(),
+    ext.end(),
+    ext.begin(),
     [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
 }

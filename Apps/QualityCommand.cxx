@@ -56,8 +56,8 @@ int RunQuality(int argc, char* argv[])
     }
     else if (!arg.empty() && arg[0] == '-')
     {
-      std::fprintf(stderr, "tetmesher quality: unknown option '%s'\n\n%s", arg.c_str(),
-        kQualityUsage);
+      std::fprintf(
+        stderr, "tetmesher quality: unknown option '%s'\n\n%s", arg.c_str(), kQualityUsage);
       return 2;
     }
     else if (path.empty())

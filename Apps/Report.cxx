@@ -60,14 +60,23 @@ std::string RunFilter(vtkAlgorithm* filter)
 
 void PrintQualityReport(std::FILE* out, const std::string& name, vtkDataSet* mesh)
 {
-  std::fprintf(out, "%s: %lld tetrahedra, %lld points\n", name.c_str(),
+  std::fprintf(out,
+    "%s: %lld tetrahedra, %lld points\n",
+    name.c_str(),
     static_cast<long long>(Field(mesh, "TetrahedronCount")),
     static_cast<long long>(mesh->GetNumberOfPoints()));
-  std::fprintf(out, "  quality Q   min %.4f  mean %.4f  1st percentile %.4f\n",
-    Field(mesh, "QualityMinimum"), Field(mesh, "QualityMean"), Field(mesh, "QualityPercentile1"));
-  std::fprintf(out, "  share       Q < 0.1: %.3f%%  Q < 0.3: %.3f%%\n",
-    100.0 * Field(mesh, "QualityShareBelow0.1"), 100.0 * Field(mesh, "QualityShareBelow0.3"));
-  std::fprintf(out, "  dihedral    min %.2f deg  max %.2f deg\n", Field(mesh, "MinDihedralAngle"),
+  std::fprintf(out,
+    "  quality Q   min %.4f  mean %.4f  1st percentile %.4f\n",
+    Field(mesh, "QualityMinimum"),
+    Field(mesh, "QualityMean"),
+    Field(mesh, "QualityPercentile1"));
+  std::fprintf(out,
+    "  share       Q < 0.1: %.3f%%  Q < 0.3: %.3f%%\n",
+    100.0 * Field(mesh, "QualityShareBelow0.1"),
+    100.0 * Field(mesh, "QualityShareBelow0.3"));
+  std::fprintf(out,
+    "  dihedral    min %.2f deg  max %.2f deg\n",
+    Field(mesh, "MinDihedralAngle"),
     Field(mesh, "MaxDihedralAngle"));
 }
 
@@ -86,8 +95,12 @@ void PrintHistogram(std::FILE* out, vtkTable* histogram)
   {
     double n = count->GetComponent(i, 0);
     int bar = static_cast<int>(40.0 * n / largest + 0.5);
-    std::fprintf(out, "  %.2f-%.2f %10lld %s\n", start->GetComponent(i, 0), end->GetComponent(i, 0),
-      static_cast<long long>(n), std::string(static_cast<std::size_t>(bar), '#').c_str());
+    std::fprintf(out,
+      "  %.2f-%.2f %10lld %s\n",
+      start->GetComponent(i, 0),
+      end->GetComponent(i, 0),
+      static_cast<long long>(n),
+      std::string(static_cast<std::size_t>(bar), '#').c_str());
   }
 }
 } // namespace cli

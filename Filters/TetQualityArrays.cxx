@@ -20,8 +20,11 @@ namespace tetmesher
 namespace vtkglue
 {
 
-bool ComputeTetQuality(vtkDataSet* input, vtkDataArray* size, int binCount,
-  TetQualityResult& result, std::string& error)
+bool ComputeTetQuality(vtkDataSet* input,
+  vtkDataArray* size,
+  int binCount,
+  TetQualityResult& result,
+  std::string& error)
 {
   const vtkIdType pointCount = input->GetNumberOfPoints();
   for (vtkIdType p = 0; p < pointCount; ++p)
@@ -31,8 +34,8 @@ bool ComputeTetQuality(vtkDataSet* input, vtkDataArray* size, int binCount,
     if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
     {
       std::ostringstream message;
-      message << "point " << p << " has a non-finite coordinate (" << x[0] << ", " << x[1]
-              << ", " << x[2] << ")";
+      message << "point " << p << " has a non-finite coordinate (" << x[0] << ", " << x[1] << ", "
+              << x[2] << ")";
       error = message.str();
       return false;
     }
@@ -76,8 +79,8 @@ bool ComputeTetQuality(vtkDataSet* input, vtkDataArray* size, int binCount,
         h[i] = size->GetComponent(ids->GetId(i), 0);
       }
     }
-    TetShape shape = size ? measureTetScaled(x[0], x[1], x[2], x[3], h)
-                          : measureTet(x[0], x[1], x[2], x[3]);
+    TetShape shape =
+      size ? measureTetScaled(x[0], x[1], x[2], x[3], h) : measureTet(x[0], x[1], x[2], x[3]);
     result.Quality[static_cast<std::size_t>(c)] = shape.quality;
     result.MinDihedral[static_cast<std::size_t>(c)] = shape.minDihedral;
     result.MaxDihedral[static_cast<std::size_t>(c)] = shape.maxDihedral;

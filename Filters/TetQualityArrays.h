@@ -30,8 +30,11 @@ struct TetQualityResult
 // Measures every VTK_TETRA cell of `input`. `size` (optional) is a point array of h > 0.
 // Returns false with `error` naming the defect (no tetrahedra, a non-finite coordinate,
 // a bad size value) and where it is.
-bool ComputeTetQuality(vtkDataSet* input, vtkDataArray* size, int binCount,
-  TetQualityResult& result, std::string& error);
+bool ComputeTetQuality(vtkDataSet* input,
+  vtkDataArray* size,
+  int binCount,
+  TetQualityResult& result,
+  std::string& error);
 
 void AttachQualityArrays(const TetQualityResult& result, vtkCellData* cellData);
 void AttachQualitySummary(const QualitySummary& summary, vtkFieldData* fieldData);

@@ -10,16 +10,16 @@
 #include "vtkCellType.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkIdList.h"
 #include "vtkPoints.h"
-#include "vtkPolygon.h"
 #include "vtkPolyData.h"
+#include "vtkPolygon.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 #include "vtkTable.h"
@@ -29,8 +29,8 @@
 #include <array>
 #include <cstdint>
 #include <limits>
-#include <unordered_map>
 #include <sstream>
+#include <unordered_map>
 #include <vector>
 
 vtkStandardNewMacro(vtkTetMesher);
@@ -65,8 +65,10 @@ struct FaceKeyHash
 // output 2 by DefectKind). Triangles become polygons, lone points vertices; cell data
 // DefectKind (the SurfaceDefect value), DefectRecord (which record), InputCellId; field data
 // DefectSummary (the text of the error).
-void FillDefects(const tetmesher::SurfaceDiagnosis& diagnosis, vtkPolyData* input,
-  const std::vector<vtkIdType>& cellOfTriangle, vtkPolyData* defects)
+void FillDefects(const tetmesher::SurfaceDiagnosis& diagnosis,
+  vtkPolyData* input,
+  const std::vector<vtkIdType>& cellOfTriangle,
+  vtkPolyData* defects)
 {
   defects->Initialize();
   if (diagnosis.defects.empty())
@@ -206,15 +208,17 @@ int vtkTetMesher::FillOutputPortInformation(int port, vtkInformation* info)
   return this->Superclass::FillOutputPortInformation(port, info);
 }
 
-int vtkTetMesher::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkTetMesher::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
   vtkTable* histogram = vtkTable::GetData(outputVector, 1);
   vtkPolyData* defects = vtkPolyData::GetData(outputVector, 2);
   this->LastError.clear();
-  auto fail = [this](const std::string& message) {
+  auto fail = [this](const std::string& message)
+  {
     this->LastError = message;
     vtkErrorMacro(<< message);
     return 0;
@@ -250,9 +254,10 @@ int vtkTetMesher::RequestData(
       const vtkIdType cellId = firstPolyId + polyIndex;
       if (size == 3)
       {
-        triangles.insert(triangles.end(), { static_cast<std::int32_t>(ids[0]),
-                                            static_cast<std::int32_t>(ids[1]),
-                                            static_cast<std::int32_t>(ids[2]) });
+        triangles.insert(triangles.end(),
+          { static_cast<std::int32_t>(ids[0]),
+            static_cast<std::int32_t>(ids[1]),
+            static_cast<std::int32_t>(ids[2]) });
         cellOfTriangle.push_back(cellId);
         continue;
       }
@@ -260,8 +265,10 @@ int vtkTetMesher::RequestData(
       message << "input cell " << cellId << " is a polygon with " << size << " points";
       if (size < 3 || !this->TriangulatePolygons)
       {
-        return fail(message.str() + (size < 3 ? "" : ": only triangles are meshed (turn "
-                                                      "TriangulatePolygons on, or use vtkTriangleFilter)"));
+        return fail(message.str() +
+          (size < 3 ? ""
+                    : ": only triangles are meshed (turn "
+                      "TriangulatePolygons on, or use vtkTriangleFilter)"));
       }
       // Split it into triangles of its own points (the surface keeps its points).
       polygon->Initialize(static_cast<int>(size), ids, input->GetPoints());
@@ -301,7 +308,10 @@ int vtkTetMesher::RequestData(
     tetmesher::DiagnosisOptions diagnosisOptions;
     diagnosisOptions.maxRecordsPerKind = 1000;
     tetmesher::SurfaceDiagnosis diagnosis = tetmesher::diagnoseSurface(coords.data(),
-      static_cast<std::int32_t>(pointCount), triangles.data(), triangleCount, diagnosisOptions);
+      static_cast<std::int32_t>(pointCount),
+      triangles.data(),
+      triangleCount,
+      diagnosisOptions);
     FillDefects(diagnosis, input, cellOfTriangle, defects);
     if (!diagnosis.ok())
     {
@@ -322,8 +332,12 @@ int vtkTetMesher::RequestData(
   options.maxSteinerPoints = this->MaximumSteinerPoints;
   options.removeSteinerPoints = this->RemoveSteinerPoints;
   tetmesher::MesherResult result = tetmesher::meshSurface(coords.data(),
-    static_cast<std::int32_t>(pointCount), triangles.data(), triangleCount, options,
-    [this](double progress) {
+    static_cast<std::int32_t>(pointCount),
+    triangles.data(),
+    triangleCount,
+    options,
+    [this](double progress)
+    {
       this->UpdateProgress(0.05 + 0.85 * progress);
       return !this->GetAbortExecute();
     });
@@ -412,7 +426,8 @@ int vtkTetMesher::RequestData(
   // Quality with the same code as vtkTetQuality.
   tetmesher::vtkglue::TetQualityResult quality;
   std::string qualityError;
-  if (!tetmesher::vtkglue::ComputeTetQuality(output, nullptr, this->NumberOfBins, quality, qualityError))
+  if (!tetmesher::vtkglue::ComputeTetQuality(
+        output, nullptr, this->NumberOfBins, quality, qualityError))
   {
     return fail("quality of the result: " + qualityError);
   }

@@ -6,11 +6,11 @@
  * a 5-tet box, recovery of the missing surface edges and triangles by flips and Steiner
  * points strictly inside the volume, removal of the exterior by a flood fill.
  *
- * Input: a vtkPolyData of triangles (polygons are triangulated), closed, possibly several shells; triangles shared by two
- * regions (multi-material interfaces, edges with 3+ triangles) are allowed. The surface is
- * checked first (exactly): open or non-manifold edges, self-intersections, degenerate or
- * duplicate triangles, coincident points, non-finite coordinates are refused with an error
- * naming the defect and the ids involved.
+ * Input: a vtkPolyData of triangles (polygons are triangulated), closed, possibly several shells;
+ * triangles shared by two regions (multi-material interfaces, edges with 3+ triangles) are allowed.
+ * The surface is checked first (exactly): open or non-manifold edges, self-intersections,
+ * degenerate or duplicate triangles, coincident points, non-finite coordinates are refused with an
+ * error naming the defect and the ids involved.
  *
  * Output 0: a vtkUnstructuredGrid of VTK_TETRA whose boundary faces are exactly the input
  * triangles. Output points 0..n-1 are the input points with the same coordinates (stored as

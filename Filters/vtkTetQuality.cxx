@@ -50,8 +50,9 @@ int vtkTetQuality::FillOutputPortInformation(int port, vtkInformation* info)
   return this->Superclass::FillOutputPortInformation(port, info);
 }
 
-int vtkTetQuality::RequestDataObject(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkTetQuality::RequestDataObject(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   if (!input)
@@ -75,8 +76,9 @@ int vtkTetQuality::RequestDataObject(
   return 1;
 }
 
-int vtkTetQuality::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkTetQuality::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkDataSet* output = vtkDataSet::GetData(outputVector, 0);

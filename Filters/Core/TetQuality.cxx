@@ -13,13 +13,22 @@ struct Vec3
   double x, y, z;
 };
 
-Vec3 sub(const double* p, const double* q) { return { p[0] - q[0], p[1] - q[1], p[2] - q[2] }; }
+Vec3 sub(const double* p, const double* q)
+{
+  return { p[0] - q[0], p[1] - q[1], p[2] - q[2] };
+}
 Vec3 cross(const Vec3& u, const Vec3& v)
 {
   return { u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x };
 }
-double dot(const Vec3& u, const Vec3& v) { return u.x * v.x + u.y * v.y + u.z * v.z; }
-double norm(const Vec3& u) { return std::sqrt(dot(u, u)); }
+double dot(const Vec3& u, const Vec3& v)
+{
+  return u.x * v.x + u.y * v.y + u.z * v.z;
+}
+double norm(const Vec3& u)
+{
+  return std::sqrt(dot(u, u));
+}
 
 constexpr double kRadToDeg = 57.29577951308232;
 // The 6 edges as vertex pairs, and for each the two faces (by opposite vertex) sharing it.
@@ -93,8 +102,11 @@ TetShape measureTet(const double* a, const double* b, const double* c, const dou
   return finish(s, inradius, longest);
 }
 
-TetShape measureTetScaled(
-  const double* a, const double* b, const double* c, const double* d, const double h[4])
+TetShape measureTetScaled(const double* a,
+  const double* b,
+  const double* c,
+  const double* d,
+  const double h[4])
 {
   RawShape s = measureRaw(a, b, c, d);
   double longest = 0.0, inverseSum = 0.0;

@@ -20,20 +20,23 @@ constexpr double kQualityScale = 4.898979485566356; // 2*sqrt(6)
 
 struct TetShape
 {
-  double quality = 0;        // k r / lmax in [0, 1]; 0 for flat or inverted tets
-  double minDihedral = 0;    // degrees
-  double maxDihedral = 0;    // degrees
-  double signedVolume = 0;   // det[b-a, c-a, d-a] / 6: > 0 in VTK's VTK_TETRA orientation
-                             // (the right-hand normal of a,b,c points to d). Note: that
-                             // is orient3d < 0 in Shewchuk's sign, TetMesh's convention.
+  double quality = 0;      // k r / lmax in [0, 1]; 0 for flat or inverted tets
+  double minDihedral = 0;  // degrees
+  double maxDihedral = 0;  // degrees
+  double signedVolume = 0; // det[b-a, c-a, d-a] / 6: > 0 in VTK's VTK_TETRA orientation
+                           // (the right-hand normal of a,b,c points to d). Note: that
+                           // is orient3d < 0 in Shewchuk's sign, TetMesh's convention.
 };
 
 // Shape of the tet (a,b,c,d) in VTK order. Quality is 0 when signedVolume is not positive.
 TetShape measureTet(const double* a, const double* b, const double* c, const double* d);
 
 // As measureTet, but Q in units of the size field: h[i] is the wanted size at vertex i (> 0).
-TetShape measureTetScaled(
-  const double* a, const double* b, const double* c, const double* d, const double h[4]);
+TetShape measureTetScaled(const double* a,
+  const double* b,
+  const double* c,
+  const double* d,
+  const double h[4]);
 
 // Summary statistics of a set of Q values (the numbers the CLI prints and the filters store).
 struct QualitySummary
@@ -42,11 +45,11 @@ struct QualitySummary
   double minimum = 0;
   double maximum = 0;
   double mean = 0;
-  double percentile1 = 0;     // the 1st percentile (nearest rank)
-  double shareBelow01 = 0;    // fraction of tets with Q < 0.1
-  double shareBelow03 = 0;    // fraction of tets with Q < 0.3
-  double minDihedral = 0;     // degrees, over all tets
-  double maxDihedral = 0;     // degrees, over all tets
+  double percentile1 = 0;  // the 1st percentile (nearest rank)
+  double shareBelow01 = 0; // fraction of tets with Q < 0.1
+  double shareBelow03 = 0; // fraction of tets with Q < 0.3
+  double minDihedral = 0;  // degrees, over all tets
+  double maxDihedral = 0;  // degrees, over all tets
 };
 
 QualitySummary summarizeQuality(const std::vector<TetShape>& shapes);

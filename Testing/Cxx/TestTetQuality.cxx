@@ -53,8 +53,8 @@ public:
   std::string Last;
 };
 
-vtkSmartPointer<vtkUnstructuredGrid> MakeGrid(
-  const std::vector<std::array<double, 3>>& points, const std::vector<std::array<vtkIdType, 4>>& tets)
+vtkSmartPointer<vtkUnstructuredGrid> MakeGrid(const std::vector<std::array<double, 3>>& points,
+  const std::vector<std::array<vtkIdType, 4>>& tets)
 {
   auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
   vtkNew<vtkPoints> pts;
@@ -90,9 +90,14 @@ const double s6 = std::sqrt(6.0);
 
 // Regular tet of edge 1 in VTK orientation, right-corner tet, a nearly flat tet, a flat one.
 std::vector<std::array<double, 3>> kPoints = {
-  { 0, 0, 0 }, { 1, 0, 0 }, { 0.5, s3 / 2, 0 }, { 0.5, s3 / 6, std::sqrt(2.0 / 3.0) }, // 0-3
-  { 0, 1, 0 }, { 0, 0, 1 },                                                            // 4-5
-  { 0.5, 0.5, 1e-9 }, { 0.5, 0.5, 0 }                                                  // 6-7
+  { 0, 0, 0 },
+  { 1, 0, 0 },
+  { 0.5, s3 / 2, 0 },
+  { 0.5, s3 / 6, std::sqrt(2.0 / 3.0) }, // 0-3
+  { 0, 1, 0 },
+  { 0, 0, 1 }, // 4-5
+  { 0.5, 0.5, 1e-9 },
+  { 0.5, 0.5, 0 } // 6-7
 };
 } // namespace
 
@@ -111,7 +116,9 @@ int TestTetQuality(int, char*[])
   CheckNear(CellValue(filter, "MaxDihedralAngle", 0), regularAngle, 1e-9, "regular max angle");
   // Right-corner tet: r = 1/(3+sqrt3), lmax = sqrt2, so Q = 2 sqrt6 r / sqrt2 = sqrt3 - 1.
   CheckNear(CellValue(filter, "Quality", 1), s3 - 1.0, 1e-12, "corner tet Q");
-  CheckNear(CellValue(filter, "MinDihedralAngle", 1), std::acos(1.0 / s3) * 180.0 / M_PI, 1e-9,
+  CheckNear(CellValue(filter, "MinDihedralAngle", 1),
+    std::acos(1.0 / s3) * 180.0 / M_PI,
+    1e-9,
     "corner tet min angle");
   CheckNear(CellValue(filter, "MaxDihedralAngle", 1), 90.0, 1e-9, "corner tet max angle");
   // Nearly flat: Q tends to 0 (here about 1e-9 scale); exactly flat: Q = 0.
@@ -123,8 +130,10 @@ int TestTetQuality(int, char*[])
   // Summary: 4 tets; Q = {1, sqrt3-1, ~0, 0}.
   CheckNear(FieldValue(filter, "TetrahedronCount"), 4, 0, "count");
   CheckNear(FieldValue(filter, "QualityMinimum"), 0.0, 0.0, "min");
-  CheckNear(FieldValue(filter, "QualityMean"), (1.0 + s3 - 1.0 + CellValue(filter, "Quality", 2)) / 4,
-    1e-12, "mean");
+  CheckNear(FieldValue(filter, "QualityMean"),
+    (1.0 + s3 - 1.0 + CellValue(filter, "Quality", 2)) / 4,
+    1e-12,
+    "mean");
   CheckNear(FieldValue(filter, "QualityShareBelow0.1"), 0.5, 0, "share < 0.1");
   CheckNear(FieldValue(filter, "QualityShareBelow0.3"), 0.5, 0, "share < 0.3");
   CheckNear(FieldValue(filter, "QualityPercentile1"), 0.0, 0, "1st percentile");
@@ -164,7 +173,8 @@ int TestTetQuality(int, char*[])
 
   // Bad input: each refused with an error naming the defect. The errors are expected: the
   // observers keep them off the output, where the test driver would count them as failures.
-  auto expectError = [](vtkDataSet* input, const char* sizeName, const std::string& expected) {
+  auto expectError = [](vtkDataSet* input, const char* sizeName, const std::string& expected)
+  {
     vtkNew<vtkTetQuality> bad;
     vtkNew<ErrorCounter> errors;
     vtkNew<ErrorCounter> pipelineErrors;

@@ -3,10 +3,10 @@
 #include "vtkTetQuality.h"
 
 #include "vtkActor.h"
-#include "vtkProperty.h"
 #include "vtkCamera.h"
 #include "vtkDataSetMapper.h"
 #include "vtkNew.h"
+#include "vtkProperty.h"
 #include "vtkRegressionTestImage.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
