@@ -1,0 +1,72 @@
+// Quality optimisation of a tetrahedral mesh (George-Hecht-Saltel 1990, sections 4.3 and 4.5;
+// after Klingner & Shewchuk 2007, "Aggressive tetrahedral mesh improvement").
+//
+// Driven by the worst elements: every tet whose quality is below a target is attacked with
+//  - edge removal: the n tets around an interior edge are replaced by the 2n-4 tets over the
+//    best triangulation of the edge's ring (Shewchuk's dynamic programming over the ring
+//    polygon, maximising the worst quality); n = 3 is the 3-2 flip;
+//  - 2-3 flips of its faces;
+//  - smoothing of its interior vertices: the paper's weighted barycentre of the ball (two
+//    variants are tried: volume-weighted centroids and the mean of the ideal positions over
+//    each ball face), then a few steps of ascent along the gradient of the worst quality in
+//    the ball.
+// A change is kept only when every new tet is positively oriented (exact orient3d) and the
+// worst quality of the changed set strictly improves in the chosen measure while the worst Q
+// and the worst dihedral angle of the set do not decrease. Hence the mesh's minimum Q and
+// minimum dihedral angle never decrease. Constrained faces (boundary and region interfaces)
+// are never flipped and their vertices never move, so the boundary and the interfaces are
+// kept bit-identical and every change stays inside one region.
+#pragma once
+
+#include "MeshAssembly.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace tetmesher
+{
+
+enum class QualityMeasure
+{
+  PaperQ,     // 2*sqrt(6) r_in / l_max (size-scaled when a size field is given); default
+  MinDihedral // the smallest dihedral angle, divided by the regular tet's (70.53 degrees)
+};
+
+struct OptimizationOptions
+{
+  int passes = 3;             // rounds of (smoothing, topological moves) over the bad tets
+  double qualityTarget = 0.3; // work on tets whose measure (in [0,1]) is below this
+  QualityMeasure measure = QualityMeasure::PaperQ;
+  bool smoothing = true;
+  bool flips = true;
+  int maxEdgeRing = 10;   // longest edge ring that edge removal retriangulates
+  int smoothingSteps = 8; // gradient-ascent steps per vertex after the barycentre
+};
+
+struct OptimizationResult
+{
+  bool ok = true;
+  std::string error;
+  // Q is the paper's measure (size-scaled when vertexSize is given), whatever the driving
+  // measure; dihedral angles in degrees. Over the live tets.
+  double minQualityBefore = 0, minQualityAfter = 0;
+  double meanBefore = 0, meanAfter = 0;
+  double minDihedralBefore = 0, minDihedralAfter = 0;
+  double shareBelowTargetBefore = 0, shareBelowTargetAfter = 0; // by the driving measure
+  int tetsBefore = 0, tetsAfter = 0;
+  int flips23 = 0, flips32 = 0, edgeRemovals = 0, smoothedVertices = 0;
+  int passesRun = 0;
+  double seconds = 0;
+};
+
+// Improves the worst elements of `mesh` in place. `vertexSize` (optional, h > 0 per vertex)
+// makes the quality size-scaled (measureTetScaled). `progress` gets a fraction in [0,1] after
+// each pass; returning false stops early (ok = false, error = "aborted"; the mesh is valid).
+// Requires mesh.region to have one entry per tet slot (it is resized to the capacity).
+OptimizationResult optimizeMesh(RegionMesh& mesh,
+  const OptimizationOptions& options,
+  const std::vector<double>* vertexSize = nullptr,
+  const std::function<bool(double)>& progress = {});
+
+} // namespace tetmesher
