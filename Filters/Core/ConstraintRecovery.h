@@ -35,7 +35,7 @@ struct RecoveryOptions
   int maxMovesPerItem = 500;
   // An item still missing after this many Steiner points near it is reported as a failure:
   // on valid input a few suffice, so more means intersecting or nearly touching triangles.
-  int maxSteinerPerItem = 16;
+  int maxSteinerPerItem = 64;
 };
 
 struct RecoveryResult
