@@ -8,6 +8,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <deque>
 #include <limits>
 
@@ -38,11 +39,6 @@ struct SetMin
     score = std::min(score, e.score);
     q = std::min(q, e.q);
     dih = std::min(dih, e.dih);
-  }
-  // The acceptance rule: the driving measure strictly improves, neither guarded one worsens.
-  bool betterThan(const SetMin& old) const
-  {
-    return score > old.score && q >= old.q && dih >= old.dih;
   }
 };
 
@@ -93,6 +89,14 @@ private:
   {
     return eval(m_.vertex(t, 0), m_.vertex(t, 1), m_.vertex(t, 2), m_.vertex(t, 3));
   }
+  // The acceptance rule: the driving measure of the changed set strictly improves, and
+  // neither guarded measure drops below both its old value on the set and the mesh's
+  // minimum at the start of the pass (so the mesh minima never decrease).
+  bool accept(const SetMin& now, const SetMin& old) const
+  {
+    return now.score > old.score && now.q >= std::min(old.q, floorQ_) &&
+      now.dih >= std::min(old.dih, floorDih_);
+  }
   bool positive(VertexId a, VertexId b, VertexId c, VertexId d) const
   {
     return predicates::orient3d(P(a), P(b), P(c), P(d)) > 0;
@@ -118,6 +122,7 @@ private:
   std::vector<char> fixed_; // vertex on a constrained face (or in no tet)
   std::vector<TetId> star_;
   OptimizationResult res_;
+  double floorQ_ = 0, floorDih_ = 0;
 };
 
 void Optimizer::summarize(double& minQ,
@@ -262,7 +267,7 @@ bool Optimizer::edgeRemoval(TetId t, VertexId p, VertexId q, Move& out)
     stack.push_back({ i, k });
     stack.push_back({ k, j });
   }
-  return out.newMin.betterThan(oldMin);
+  return accept(out.newMin, oldMin);
 }
 
 void Optimizer::apply(const Move& mv, std::vector<TetId>& created)
@@ -310,7 +315,7 @@ bool Optimizer::improveTet(TetId t, std::vector<TetId>& created)
       SetMin oldMin;
       for (TetId o : cand.oldTets)
         oldMin.add(evalTet(o));
-      ok = cand.newMin.betterThan(oldMin);
+      ok = accept(cand.newMin, oldMin);
     }
     consider(ok);
   }
@@ -414,7 +419,7 @@ bool Optimizer::smoothVertex(VertexId v)
   {
     setPos(cand);
     SetMin s = starMin(star_, valid);
-    if (valid && s.betterThan(curMin))
+    if (valid && accept(s, curMin))
     {
       cur = cand;
       curMin = s;
@@ -422,35 +427,70 @@ bool Optimizer::smoothVertex(VertexId v)
   }
   setPos(cur);
 
-  // Ascent on the worst tet's score (finite-difference gradient), with backtracking.
+  // Ascent on the worst quality of the ball (Klingner-Shewchuk): the gradients of the
+  // tets within a margin of the worst (finite differences) span a direction that raises them
+  // all, the point of least norm in their convex hull; then backtracking along it.
+  std::vector<std::pair<double, TetId>> ranked;
+  std::vector<std::array<double, 3>> grads;
   for (int step = 0; step < opt_.smoothingSteps && lavg > 0; ++step)
   {
-    TetId worst = -1;
-    double ws = kInf;
+    ranked.clear();
     for (TetId t : star_)
+      ranked.push_back({ evalTet(t).score, t });
+    std::sort(ranked.begin(), ranked.end());
+    const double ws = ranked[0].first;
+    grads.clear();
+    const double eps = 1e-6 * lavg;
+    for (const auto& [sc, t] : ranked)
     {
-      double s = evalTet(t).score;
-      if (s < ws)
+      if (sc > ws + 0.03 || grads.size() >= 8)
+        break;
+      std::array<double, 3> g;
+      for (int k = 0; k < 3; ++k)
       {
-        ws = s;
-        worst = t;
+        x[k] = cur[k] + eps;
+        double sp = evalTet(t).score;
+        x[k] = cur[k] - eps;
+        double sm = evalTet(t).score;
+        x[k] = cur[k];
+        g[k] = (sp - sm) / (2 * eps);
       }
+      grads.push_back(g);
     }
-    double grad[3];
-    const double eps = 1e-5 * lavg;
-    for (int k = 0; k < 3; ++k)
+    auto dot = [](const std::array<double, 3>& a, const std::array<double, 3>& b)
+    { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+    // Least-norm point of the gradients' hull (Frank-Wolfe with exact line search).
+    std::array<double, 3> grad = grads[0];
+    for (int it = 0; it < 64 && grads.size() > 1; ++it)
     {
-      x[k] = cur[k] + eps;
-      double sp = evalTet(worst).score;
-      x[k] = cur[k] - eps;
-      double sm = evalTet(worst).score;
-      x[k] = cur[k];
-      grad[k] = (sp - sm) / (2 * eps);
+      std::size_t best = 0;
+      double bd = kInf;
+      for (std::size_t i = 0; i < grads.size(); ++i)
+      {
+        double d = dot(grads[i], grad);
+        if (d < bd)
+        {
+          bd = d;
+          best = i;
+        }
+      }
+      double gg = dot(grad, grad);
+      if (gg - bd <= 1e-12 * gg)
+        break;
+      std::array<double, 3> diff = {
+        grads[best][0] - grad[0], grads[best][1] - grad[1], grads[best][2] - grad[2]
+      };
+      double dd = dot(diff, diff);
+      double tstep = dd > 0 ? std::clamp(-dot(grad, diff) / dd, 0.0, 1.0) : 0.0;
+      for (int k = 0; k < 3; ++k)
+        grad[k] += tstep * diff[k];
     }
-    double gn = std::sqrt(grad[0] * grad[0] + grad[1] * grad[1] + grad[2] * grad[2]);
-    if (!(gn > 0))
+    double gn = std::sqrt(dot(grad, grad));
+    if (!(gn > 1e-9 / lavg))
       break;
     bool moved = false;
+    std::array<double, 3> bestY = cur;
+    SetMin bestMin = curMin;
     for (double len = 0.2 * lavg; len > 1e-4 * lavg; len *= 0.5)
     {
       std::array<double, 3> y;
@@ -458,20 +498,21 @@ bool Optimizer::smoothVertex(VertexId v)
         y[k] = cur[k] + len * grad[k] / gn;
       setPos(y);
       SetMin s = starMin(star_, valid);
-      if (valid && s.betterThan(curMin))
+      if (valid && accept(s, curMin) && (!moved || s.score > bestMin.score))
       {
-        cur = y;
-        curMin = s;
+        bestY = y;
+        bestMin = s;
         moved = true;
-        break;
       }
     }
+    cur = bestY;
+    curMin = bestMin;
     setPos(cur);
     if (!moved)
       break;
   }
 
-  if (curMin.betterThan(origMin))
+  if (accept(curMin, origMin))
   {
     setPos(cur);
     ++res_.smoothedVertices;
@@ -527,6 +568,11 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
   {
     res_.passesRun = pass + 1;
     int changes = 0;
+    {
+      double mean, share;
+      int count;
+      summarize(floorQ_, mean, floorDih_, share, count);
+    }
     // Bad tets, worst first (ties by id: deterministic).
     auto collectBad = [&]()
     {
