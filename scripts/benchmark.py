@@ -640,6 +640,7 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     log = os.path.join(work, "runs.log")
     command = "/usr/bin/python3 scripts/benchmark.py " + " ".join(shlex.quote(a) for a in sys.argv[1:])
+    command = command.replace(" --tetmesher build-bench/bin/tetmesher", "")  # benchmark.sh's default
     started = datetime.datetime.now(datetime.timezone.utc)
     rows, qhist = [], {}
     for case in cases:
@@ -743,6 +744,7 @@ def write_outputs(args, rows, cases, tools, command, started, finished, qhist):
               "exactly 1 tet (2 for an enclosed shell = an interface), every output boundary face an "
               "input triangle, no Steiner point on the boundary (*bSt*; *St* = all Steiner points). "
               "Q = 2*sqrt(6)*r_in/l_max; *Q<0.3* = share of tets; dihedral min/max in degrees; "
+              "*flat* = tets of zero volume in double arithmetic; "
               "*dV* = (sum of tet volumes - enclosed volume)/enclosed volume.")
     md.append("")
     md.extend(tables_md(rows, tools))
@@ -806,11 +808,11 @@ def tables_md(rows, tools):
     md.append("")
     md.append("## Per case\n")
     md.append("| case | tris | tool | ok | time s | x TM | RSS MB | tets | x TM | tets/s | bnd | "
-              "miss/extra | St | bSt | Q min | Q mean | Q<0.3 | dih min | dih max | dV | note |")
-    md.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+              "miss/extra | St | bSt | Q min | Q mean | Q<0.3 | flat | dih min | dih max | dV | note |")
+    md.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         ok = r["success"] == "yes"
-        md.append("| %s | %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+        md.append("| %s | %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
             r["case"], r["triangles"], r["tool"], r["success"],
             "timeout" if r["rc"] == "timeout" else fmt(r["time_s"], ".3f"),
             fmt(r.get("time_ratio"), ".2f"), fmt(r.get("rss_mb"), ".0f"),
@@ -820,7 +822,7 @@ def tables_md(rows, tools):
             ("%d/%d" % (r["tri_missing"], r["extra_boundary_faces"]) if ok and "tri_missing" in r else ""),
             r.get("steiner", "") if ok else "", r.get("steiner_on_boundary", "") if ok else "",
             fmt(r.get("q_min"), ".3f"), fmt(r.get("q_mean"), ".3f"), fmt(r.get("q_lt03"), ".1%"),
-            fmt(r.get("dih_min"), ".2f"), fmt(r.get("dih_max"), ".2f"),
+            r.get("flat_tets", "") if ok else "", fmt(r.get("dih_min"), ".2f"), fmt(r.get("dih_max"), ".2f"),
             fmt(r.get("vol_relerr"), ".1e"), r["error"].replace("|", "/")))
     md.append("")
     return md
