@@ -1,0 +1,88 @@
+// Every input that the fuzzer (Testing/Fuzz, scripts/fuzz.sh) found to crash, hang or break a
+// property, replayed through the fuzzer's own entry (runFuzzSurface in FuzzSurfaceCheck.h).
+// The inputs are the files of Testing/Fuzz/regressions/; a new finding is added by copying
+// the artifact there under a name that says what it is, and, when the bug is not fixed yet,
+// by listing it in kKnownFailures with the reason.
+#include "../Fuzz/FuzzSurfaceCheck.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace
+{
+namespace fs = std::filesystem;
+
+fs::path regressionDir()
+{
+  return fs::path(__FILE__).parent_path().parent_path() / "Fuzz" / "regressions";
+}
+
+std::vector<std::uint8_t> readBytes(const fs::path& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  return std::vector<std::uint8_t>(
+    std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Findings not fixed yet: file name -> why (the test then checks that they still fail, so
+// that a fix is noticed and the entry removed).
+const std::map<std::string, std::string> kKnownFailures = {};
+
+// Inputs that once took over libFuzzer's -timeout=10 (under ASan): they must finish, and in
+// an optimised build well within this many seconds.
+constexpr double kSlowInputSeconds = 60.0;
+
+TEST(FuzzRegressions, StoredInputsReplay)
+{
+  const fs::path dir = regressionDir();
+  ASSERT_TRUE(fs::is_directory(dir)) << dir;
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.is_regular_file())
+      files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  ASSERT_FALSE(files.empty());
+  for (const fs::path& file : files)
+  {
+    const std::vector<std::uint8_t> bytes = readBytes(file);
+    const auto start = std::chrono::steady_clock::now();
+    const std::string problem = tetmesher::fuzz::runFuzzSurface(bytes.data(), bytes.size());
+    const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const std::string name = file.filename().string();
+    std::cout << name << ": " << seconds << " s" << (problem.empty() ? "" : ", " + problem) << "\n";
+    const auto known = kKnownFailures.find(name);
+    if (known != kKnownFailures.end())
+      EXPECT_FALSE(problem.empty())
+        << name << " passes now: remove it from kKnownFailures (" << known->second << ")";
+    else
+      EXPECT_EQ(problem, "") << name;
+    EXPECT_LT(seconds, kSlowInputSeconds) << name;
+  }
+}
+
+// The first finding, kept as a statement of the contract: a grid tetrahedron with a flipped
+// triangle is refused by the diagnosis (inconsistent orientation) but meshed by meshSurface,
+// which ignores orientation (vtkTetMesher refuses it, through the diagnosis).
+TEST(FuzzRegressions, OrientationIsNotTheMeshersBusiness)
+{
+  const std::vector<std::uint8_t> bytes = readBytes(regressionDir() / "orientation-only-grid.bin");
+  const tetmesher::fuzz::FuzzSurface s =
+    tetmesher::fuzz::decodeFuzzSurface(bytes.data(), bytes.size());
+  const tetmesher::SurfaceDiagnosis d = tetmesher::diagnoseSurface(
+    s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount());
+  EXPECT_FALSE(d.ok());
+  EXPECT_GT(d.count(tetmesher::SurfaceDefect::InconsistentOrientation), 0);
+  const tetmesher::MesherResult r =
+    tetmesher::meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount());
+  EXPECT_TRUE(r.ok) << r.error;
+}
+
+} // namespace

@@ -1,0 +1,132 @@
+// The property checked on every fuzzer input, shared by the libFuzzer target and the
+// regression test: decode the bytes into a surface (FuzzSurfaceInput.h), diagnose it, and
+//  - the diagnosis must name only ids that exist and give a non-empty summary;
+//  - meshSurface (which runs the same diagnosis) must refuse exactly the surfaces that the
+//    diagnosis refuses, inconsistent orientation aside (the mesher ignores it; vtkTetMesher
+//    does not);
+//  - on a surface the mesher accepts, a successful mesh must keep the input points bit for
+//    bit, have positively oriented tets with ids in range, and a tet face equal to every input
+//    triangle;
+//  - with flag meshInvalidInput, meshSurface(validateInput = false) on refused input must fail
+//    or succeed cleanly (no crash, no hang, no sanitizer report).
+// Returns an empty string when all hold, otherwise what is wrong.
+#pragma once
+
+#include "FuzzSurfaceInput.h"
+
+#include "Mesher.h"
+#include "Predicates.h"
+#include "SurfaceDiagnosis.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <string>
+
+namespace tetmesher
+{
+namespace fuzz
+{
+
+inline std::string checkMesh(const FuzzSurface& s, const MesherResult& r)
+{
+  const std::int32_t n = s.pointCount();
+  if (r.points.size() % 3 != 0 || r.points.size() < s.points.size())
+    return "output has fewer points than the input";
+  if (std::memcmp(r.points.data(), s.points.data(), s.points.size() * sizeof(double)) != 0)
+    return "input points not copied bit for bit";
+  const std::int32_t outCount = static_cast<std::int32_t>(r.points.size() / 3);
+  if (r.tets.size() % 4 != 0 || r.regionIds.size() != r.tets.size() / 4)
+    return "tets/regionIds sizes disagree";
+  if (r.steinerPoints != outCount - n)
+    return "steinerPoints is not the number of extra points";
+  for (std::size_t t = 0; t < r.tets.size() / 4; ++t)
+  {
+    const std::int32_t* v = &r.tets[4 * t];
+    for (int k = 0; k < 4; ++k)
+      if (v[k] < 0 || v[k] >= outCount)
+        return "tet " + std::to_string(t) + " has a vertex id out of range";
+    if (predicates::orient3d(
+          &r.points[3 * v[0]], &r.points[3 * v[1]], &r.points[3 * v[2]], &r.points[3 * v[3]]) <= 0)
+      return "tet " + std::to_string(t) + " is not positively oriented";
+    if (r.regionIds[t] < 0 || r.regionIds[t] >= r.regionCount)
+      return "tet " + std::to_string(t) + " has a region id out of range";
+  }
+  if (r.boundaryFaceTet.size() != static_cast<std::size_t>(s.triangleCount()))
+    return "boundaryFaceTet does not have one entry per input triangle";
+  for (std::int32_t i = 0; i < s.triangleCount(); ++i)
+  {
+    const std::int32_t code = r.boundaryFaceTet[i];
+    if (code < 0 || static_cast<std::size_t>(code / 4) >= r.tets.size() / 4)
+      return "boundaryFaceTet of triangle " + std::to_string(i) + " out of range";
+    std::array<std::int32_t, 3> face;
+    int k = 0;
+    for (int j = 0; j < 4; ++j)
+      if (j != code % 4)
+        face[k++] = r.tets[4 * (code / 4) + j];
+    std::array<std::int32_t, 3> tri = {
+      s.triangles[3 * i], s.triangles[3 * i + 1], s.triangles[3 * i + 2]
+    };
+    std::sort(face.begin(), face.end());
+    std::sort(tri.begin(), tri.end());
+    if (face != tri)
+      return "input triangle " + std::to_string(i) + " is not a face of its boundary tet";
+  }
+  return {};
+}
+
+inline std::string runFuzzSurface(const std::uint8_t* data, std::size_t size)
+{
+  const FuzzSurface s = decodeFuzzSurface(data, size);
+  const std::int32_t n = s.pointCount();
+  const std::int32_t m = s.triangleCount();
+  DiagnosisOptions diagnosisOptions;
+  if (s.limitRecords)
+    diagnosisOptions.maxRecordsPerKind = 3;
+  const SurfaceDiagnosis d =
+    diagnoseSurface(s.points.data(), n, s.triangles.data(), m, diagnosisOptions);
+  if (d.summary().empty())
+    return "empty diagnosis summary";
+  for (const DefectRecord& record : d.defects)
+  {
+    for (std::int32_t p : record.pointIds)
+      if (p < 0 || p >= n)
+        return "diagnosis names point " + std::to_string(p) + " out of range";
+    for (std::int32_t t : record.triangleIds)
+      if (t < 0 || t >= m)
+        return "diagnosis names triangle " + std::to_string(t) + " out of range";
+  }
+  if (d.ok() && (n == 0 || m == 0))
+    return "diagnosis accepts an empty surface";
+
+  MesherOptions options;
+  options.enclosedShellsAreHoles = s.enclosedShellsAreHoles;
+  const MesherResult r = meshSurface(s.points.data(), n, s.triangles.data(), m, options);
+  if (!r.ok && r.error.empty())
+    return "meshSurface failed without a message";
+  bool blocking = false;
+  for (const DefectRecord& record : d.defects)
+    if (!isWarning(record.kind) && record.kind != SurfaceDefect::InconsistentOrientation)
+      blocking = true;
+  if (blocking != !d.ok() && !d.ok() && d.count(SurfaceDefect::InconsistentOrientation) == 0)
+    return "ok() is false but no defect is an error";
+  if (blocking)
+  {
+    if (r.ok)
+      return "meshSurface accepted a surface that the diagnosis refuses: " + d.summary();
+    if (s.meshInvalidInput && !(n == 0 || m == 0))
+    {
+      options.validateInput = false;
+      const MesherResult u = meshSurface(s.points.data(), n, s.triangles.data(), m, options);
+      if (!u.ok && u.error.empty())
+        return "meshSurface(validateInput=false) failed without a message";
+    }
+    return {};
+  }
+  if (r.ok)
+    return checkMesh(s, r);
+  return {};
+}
+
+} // namespace fuzz
+} // namespace tetmesher
