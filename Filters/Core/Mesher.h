@@ -24,7 +24,7 @@ struct MesherOptions
   // are holes and dropped. Side-by-side materials (shared faces) all have depth 1.
   bool enclosedShellsAreHoles = false;
   // Budget of recovery Steiner points; -1: 100 + 4 per input triangle. An item still missing
-  // after 16 Steiner points near it also ends the run (error naming it).
+  // after 64 Steiner points near it also ends the run (error naming it).
   int maxSteinerPoints = -1;
   // Bound on flips tried per missing edge/face and per round.
   int maxMovesPerItem = 500;

@@ -11,7 +11,19 @@ namespace geometry
 namespace
 {
 using predicates::orient2d;
-using predicates::orient3d;
+
+// orient3d, answering at once for four points on one axis-aligned plane (exactly zero): such
+// planar caps are common in CAD input and the general predicate needs its slow exact stage
+// to prove a zero.
+int orient3d(const double* a, const double* b, const double* c, const double* d)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k])
+      return 0;
+  }
+  return predicates::orient3d(a, b, c, d);
+}
 
 // A coordinate axis whose projection keeps the triangle abc non-degenerate, or -1 when a, b, c
 // are collinear.
