@@ -491,16 +491,25 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
   const auto& edges = surface_.edges;
   std::vector<char> recovered(triangles.size(), 0);
   std::size_t recoveredCount = 0;
+  // Reports progress (and honours an abort) once per round and every 1024 items.
+  auto keepGoing = [&](std::size_t item)
+  {
+    if (!progress || item % 1024 != 0)
+      return true;
+    if (progress(static_cast<double>(recoveredCount) / triangles.size()))
+      return true;
+    result_.error = "aborted during boundary recovery";
+    return false;
+  };
   for (int round = 0;; ++round)
   {
     result_.rounds = round + 1;
-    if (progress && !progress(static_cast<double>(recoveredCount) / triangles.size()))
-    {
-      result_.error = "aborted during boundary recovery";
+    if (!keepGoing(0))
       return result_;
-    }
     for (std::size_t e = 0; e < edges.size(); ++e)
     {
+      if (!keepGoing(e + 1))
+        return result_;
       VertexId a = edges[e][0], b = edges[e][1];
       auto exists = [&] { return findEdge(mesh_, index_, a, b) >= 0; };
       if (!flipUntil(a, edgeCost(a, b), exists))
@@ -508,6 +517,8 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
     }
     for (std::size_t i = 0; i < triangles.size(); ++i)
     {
+      if (!keepGoing(i + 1))
+        return result_;
       if (recovered[i])
         continue;
       const auto& t = triangles[i];
