@@ -47,7 +47,7 @@ struct Move
   std::vector<TetId> oldTets;
   std::vector<TetVertices> newTets;
   SetMin newMin;
-  int kind = 0; // 0: 2-3 flip, 1: edge removal (ring 3 = 3-2 flip)
+  int kind = 0; // 0: 2-3 flip, 1: edge removal (ring 3 = 3-2 flip), 2: multi-face removal
 };
 
 class Optimizer
@@ -107,7 +107,7 @@ private:
   }
 
   void summarize(double& minQ, double& meanQ, double& minDih, double& share, int& count) const;
-  bool flip23(TetId t, int f, Move& out) const;
+  bool multiFace(TetId t, int f, Move& out) const;
   bool edgeRemoval(TetId t, VertexId p, VertexId q, Move& out);
   void apply(const Move& mv, std::vector<TetId>& created);
   bool improveTet(TetId t, std::vector<TetId>& created);
@@ -157,32 +157,120 @@ void Optimizer::summarize(double& minQ,
   share = static_cast<double>(below) / count;
 }
 
-bool Optimizer::flip23(TetId t, int f, Move& out) const
+bool Optimizer::multiFace(TetId t, int f, Move& out) const
 {
+  // Faces sandwiched between apexes a and b, oriented so that orient3d(face, a) > 0 (their
+  // normal points toward b), each with its two tets. One face: the 2-3 flip.
+  struct Sandwiched
+  {
+    std::array<VertexId, 3> v;
+    TetId ta, tb;
+  };
   if (m_.isConstrained(t, f))
     return false;
-  FaceRef n = m_.neighbor(t, f);
-  if (n == kNoNeighbor)
+  FaceRef n0 = m_.neighbor(t, f);
+  if (n0 == kNoNeighbor)
     return false;
-  TetId u = faceTet(n);
-  VertexId a = m_.vertex(t, f);
-  VertexId b = m_.vertex(u, faceIndex(n));
+  const VertexId a = m_.vertex(t, f);
+  const VertexId b = m_.vertex(faceTet(n0), faceIndex(n0));
   const int* fv = kFaceVertices[f];
-  VertexId x[3] = { m_.vertex(t, fv[0]), m_.vertex(t, fv[1]), m_.vertex(t, fv[2]) };
-  out.oldTets = { t, u };
-  out.newTets.clear();
-  out.newMin = SetMin();
-  out.kind = 0;
-  for (int i = 0; i < 3; ++i)
+  std::vector<Sandwiched> faces = {
+    { { m_.vertex(t, fv[0]), m_.vertex(t, fv[1]), m_.vertex(t, fv[2]) }, t, faceTet(n0) }
+  };
+  bool found = false;
+  std::vector<TetVertices> newTets;
+  std::vector<std::pair<std::size_t, int>> edges; // boundary edge: face index, edge index
+  for (int iter = 0; iter < opt_.maxMultiFace; ++iter)
   {
-    // (x0,x1,x2,a) is positive; replacing x_{i+2} by b keeps the sign iff ab crosses the face.
-    TetVertices nt = { x[i], x[(i + 1) % 3], b, a };
-    if (!positive(nt[0], nt[1], nt[2], nt[3]))
-      return false;
-    out.newTets.push_back(nt);
-    out.newMin.add(eval(nt));
+    // Boundary edges of the face set (directed edges whose reverse is not in the set).
+    edges.clear();
+    for (std::size_t i = 0; i < faces.size(); ++i)
+      for (int e = 0; e < 3; ++e)
+      {
+        VertexId u = faces[i].v[e], v = faces[i].v[(e + 1) % 3];
+        bool inner = false;
+        for (std::size_t j = 0; j < faces.size() && !inner; ++j)
+          for (int g = 0; g < 3; ++g)
+            if (faces[j].v[g] == v && faces[j].v[(g + 1) % 3] == u)
+              inner = true;
+        if (!inner)
+          edges.push_back({ i, e });
+      }
+    newTets.clear();
+    SetMin newMin;
+    bool valid = true;
+    std::size_t worst = 0;
+    double worstScore = kInf;
+    for (std::size_t k = 0; k < edges.size(); ++k)
+    {
+      const Sandwiched& F = faces[edges[k].first];
+      int e = edges[k].second;
+      TetVertices nt = { F.v[e], F.v[(e + 1) % 3], b, a };
+      double sc = -1;
+      if (positive(nt[0], nt[1], nt[2], nt[3]))
+      {
+        Eval ev = eval(nt);
+        newMin.add(ev);
+        sc = ev.score;
+      }
+      else
+        valid = false;
+      if (sc < worstScore)
+      {
+        worstScore = sc;
+        worst = k;
+      }
+      newTets.push_back(nt);
+    }
+    if (valid)
+    {
+      SetMin oldMin;
+      for (const Sandwiched& F : faces)
+      {
+        oldMin.add(evalTet(F.ta));
+        oldMin.add(evalTet(F.tb));
+      }
+      if (accept(newMin, oldMin) && (!found || newMin.score > out.newMin.score))
+      {
+        found = true;
+        out.oldTets.clear();
+        for (const Sandwiched& F : faces)
+        {
+          out.oldTets.push_back(F.ta);
+          out.oldTets.push_back(F.tb);
+        }
+        out.newTets = newTets;
+        out.newMin = newMin;
+        out.kind = faces.size() == 1 ? 0 : 2;
+      }
+    }
+    // Grow across the bottleneck edge (u,v) of face (u,v,w): the next sandwiched face is
+    // (v,u,z) with tets (u,v,a,z) and (u,v,b,z) beyond the faces (u,v,a) and (u,v,b).
+    const Sandwiched F = faces[edges[worst].first];
+    const int e = edges[worst].second;
+    const VertexId u = F.v[e], v = F.v[(e + 1) % 3], w = F.v[(e + 2) % 3];
+    int wa = localIndex(m_, F.ta, w), wb = localIndex(m_, F.tb, w);
+    if (m_.isConstrained(F.ta, wa) || m_.isConstrained(F.tb, wb))
+      break;
+    FaceRef na = m_.neighbor(F.ta, wa), nb = m_.neighbor(F.tb, wb);
+    if (na == kNoNeighbor || nb == kNoNeighbor)
+      break;
+    TetId ta = faceTet(na), tb = faceTet(nb);
+    VertexId z = m_.vertex(ta, faceIndex(na));
+    if (m_.vertex(tb, faceIndex(nb)) != z)
+      break;
+    int ia = localIndex(m_, ta, a);
+    FaceRef mid = m_.neighbor(ta, ia);
+    if (mid == kNoNeighbor || faceTet(mid) != tb || m_.isConstrained(ta, ia))
+      break;
+    bool seen = false;
+    for (const Sandwiched& G : faces)
+      seen = seen || G.ta == ta || G.tb == tb;
+    if (seen || !positive(v, u, z, a))
+      break;
+    faces.push_back({ { v, u, z }, ta, tb });
   }
-  return true;
+  return found;
 }
 
 bool Optimizer::edgeRemoval(TetId t, VertexId p, VertexId q, Move& out)
@@ -280,6 +368,8 @@ void Optimizer::apply(const Move& mv, std::vector<TetId>& created)
     rm_.region[static_cast<std::size_t>(t)] = region;
   if (mv.kind == 0)
     ++res_.flips23;
+  else if (mv.kind == 2)
+    ++res_.multiFaceRemovals;
   else if (mv.oldTets.size() == 3)
     ++res_.flips32;
   else
@@ -308,16 +398,7 @@ bool Optimizer::improveTet(TetId t, std::vector<TetId>& created)
     consider(edgeRemoval(t, m_.vertex(t, e[0]), m_.vertex(t, e[1]), cand));
   for (int f = 0; f < 4; ++f)
   {
-    bool ok = flip23(t, f, cand);
-    if (ok)
-    {
-
-      SetMin oldMin;
-      for (TetId o : cand.oldTets)
-        oldMin.add(evalTet(o));
-      ok = accept(cand.newMin, oldMin);
-    }
-    consider(ok);
+    consider(multiFace(t, f, cand));
   }
   if (!found)
     return false;

@@ -41,6 +41,7 @@ struct OptimizationOptions
   bool smoothing = true;
   bool flips = true;
   int maxEdgeRing = 10;   // longest edge ring that edge removal retriangulates
+  int maxMultiFace = 8;   // most faces one multi-face removal takes out (1: 2-3 flips only)
   int smoothingSteps = 8; // gradient-ascent steps per vertex after the barycentre
 };
 
@@ -56,6 +57,7 @@ struct OptimizationResult
   double shareBelowTargetBefore = 0, shareBelowTargetAfter = 0; // by the driving measure
   int tetsBefore = 0, tetsAfter = 0;
   int flips23 = 0, flips32 = 0, edgeRemovals = 0, smoothedVertices = 0;
+  int multiFaceRemovals = 0; // more than one face (one face: flips23)
   int passesRun = 0;
   double seconds = 0;
 };
