@@ -1,0 +1,707 @@
+#include "InteriorRefinement.h"
+
+#include "Delaunay.h"
+#include "HilbertSort.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace tetmesher
+{
+
+namespace
+{
+
+double distance(const double* a, const double* b)
+{
+  const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+std::uint64_t edgeKey(VertexId a, VertexId b)
+{
+  if (a > b)
+    std::swap(a, b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+    static_cast<std::uint32_t>(b);
+}
+
+bool faceIsConstrained(const TetMesh& mesh, TetId t, int f)
+{
+  if (mesh.isConstrained(t, f))
+    return true;
+  const FaceRef n = mesh.neighbor(t, f);
+  return n == kNoNeighbor || mesh.isConstrained(faceTet(n), faceIndex(n));
+}
+
+bool tetHas(const TetMesh& mesh, TetId t, VertexId v)
+{
+  const VertexId* tv = &mesh.tets[4 * static_cast<std::size_t>(t)];
+  return tv[0] == v || tv[1] == v || tv[2] == v || tv[3] == v;
+}
+
+// The live tets incident to v, by adjacency from t (which contains v). Marks visited tets
+// with scratch bit 2 and clears it again.
+void starOf(TetMesh& mesh, TetId t, VertexId v, std::vector<TetId>& star)
+{
+  constexpr std::uint8_t kSeen = kScratchBit2;
+  star.clear();
+  star.push_back(t);
+  mesh.flags[t] |= kSeen;
+  for (std::size_t i = 0; i < star.size(); ++i)
+  {
+    const TetId u = star[i];
+    for (int f = 0; f < 4; ++f)
+    {
+      if (mesh.vertex(u, f) == v)
+        continue; // the face opposite v does not contain v
+      const FaceRef n = mesh.neighbor(u, f);
+      if (n == kNoNeighbor)
+        continue;
+      const TetId w = faceTet(n);
+      if (!(mesh.flags[w] & kSeen))
+      {
+        mesh.flags[w] |= kSeen;
+        star.push_back(w);
+      }
+    }
+  }
+  for (TetId u : star)
+    mesh.flags[u] = static_cast<std::uint8_t>(mesh.flags[u] & ~kSeen);
+}
+
+// Squared distance from p to the triangle abc (Ericson, Real-Time Collision Detection 5.1.5).
+double pointTriangleDistance2(const double* p, const double* a, const double* b, const double* c)
+{
+  auto sub = [](const double* x, const double* y, double* r)
+  {
+    r[0] = x[0] - y[0];
+    r[1] = x[1] - y[1];
+    r[2] = x[2] - y[2];
+  };
+  auto dot = [](const double* x, const double* y)
+  { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+  double ab[3], ac[3], ap[3], q[3];
+  sub(b, a, ab);
+  sub(c, a, ac);
+  sub(p, a, ap);
+  auto at = [&](double v, double w)
+  {
+    for (int k = 0; k < 3; ++k)
+      q[k] = a[k] + v * ab[k] + w * ac[k];
+    double d[3];
+    sub(p, q, d);
+    return dot(d, d);
+  };
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0)
+    return at(0, 0);
+  double bp[3];
+  sub(p, b, bp);
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3)
+    return at(1, 0);
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0)
+    return at(d1 / (d1 - d3), 0);
+  double cp[3];
+  sub(p, c, cp);
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6)
+    return at(0, 1);
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0)
+    return at(0, d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+  {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return at(1 - w, w);
+  }
+  const double denom = va + vb + vc;
+  if (!(denom > 0))
+    return 0; // degenerate triangle: treat as touching
+  return at(vb / denom, vc / denom);
+}
+
+// Vertices bucketed by size class: class L holds sizes in [base 2^L, base 2^(L+1)) (class 0
+// also the smaller ones), in a hash grid whose cells are as large as the largest rejection
+// radius that a vertex of the class can be involved in, so a query looks at 3x3x3 cells per
+// class.
+class ProximityGrid
+{
+public:
+  ProximityGrid(double base, double ratio, const double* origin)
+    : base_(base)
+    , ratio_(ratio)
+  {
+    for (int k = 0; k < 3; ++k)
+      origin_[k] = origin[k];
+  }
+
+  void insert(VertexId v, const double* p, double h)
+  {
+    if (static_cast<std::size_t>(v) >= next_.size())
+      next_.resize(static_cast<std::size_t>(v) + 1, -1);
+    const int level = levelOf(h);
+    while (static_cast<int>(levels_.size()) <= level)
+    {
+      Level l;
+      l.cell = ratio_ * base_ * std::ldexp(1.0, static_cast<int>(levels_.size()) + 2);
+      levels_.push_back(std::move(l));
+    }
+    Level& l = levels_[level];
+    const std::uint64_t key = cellKey(l, p, 0, 0, 0);
+    auto [it, fresh] = l.head.emplace(key, v);
+    next_[v] = fresh ? -1 : it->second;
+    it->second = v;
+  }
+
+  // Is some vertex q with d(p,q) * (1/h + 1/h_q) / 2 < ratio?
+  bool hasNear(const double* p,
+    double h,
+    const std::vector<double>& coords,
+    const std::vector<double>& sizes) const
+  {
+    for (const Level& l : levels_)
+    {
+      for (int i = -1; i <= 1; ++i)
+        for (int j = -1; j <= 1; ++j)
+          for (int k = -1; k <= 1; ++k)
+          {
+            auto it = l.head.find(cellKey(l, p, i, j, k));
+            if (it == l.head.end())
+              continue;
+            for (VertexId q = it->second; q >= 0; q = next_[q])
+            {
+              const double d = distance(p, &coords[3 * static_cast<std::size_t>(q)]);
+              if (d * 0.5 * (1 / h + 1 / sizes[q]) < ratio_)
+                return true;
+            }
+          }
+    }
+    return false;
+  }
+
+private:
+  struct Level
+  {
+    double cell = 0;
+    std::unordered_map<std::uint64_t, VertexId> head;
+  };
+
+  int levelOf(double h) const
+  {
+    if (!(h > base_))
+      return 0;
+    return std::min(60, std::max(0, static_cast<int>(std::floor(std::log2(h / base_)))));
+  }
+
+  std::uint64_t cellKey(const Level& l, const double* p, int di, int dj, int dk) const
+  {
+    const int d[3] = { di, dj, dk };
+    std::uint64_t key = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double c = std::floor((p[a] - origin_[a]) / l.cell);
+      const std::int64_t ic =
+        static_cast<std::int64_t>(std::max(-1e6, std::min(1e6, c))) + d[a] + (1 << 20);
+      key = (key << 21) | (static_cast<std::uint64_t>(ic) & ((1u << 21) - 1));
+    }
+    return key;
+  }
+
+  double base_;
+  double ratio_;
+  double origin_[3];
+  std::vector<Level> levels_;
+  std::vector<VertexId> next_;
+};
+
+// Unique edges of the live tets as symmetric CSR adjacency, with for each entry a tet that has
+// the edge. Linear time: entries are bucketed by their smaller vertex (counting sort) and
+// duplicates dropped with a stamp per vertex; the order is the tet order, so deterministic.
+struct EdgeGraph
+{
+  std::vector<std::int32_t> offsets;
+  std::vector<VertexId> targets;
+  std::vector<TetId> tetOf;
+  std::vector<std::int32_t> start, fill;
+  std::vector<VertexId> halfTarget, stamp;
+  std::vector<TetId> halfTet;
+
+  void build(const TetMesh& mesh)
+  {
+    static const int kEdges[6][2] = { { 0, 1 }, { 0, 2 }, { 0, 3 }, { 1, 2 }, { 1, 3 }, { 2, 3 } };
+    const std::size_t nv = static_cast<std::size_t>(mesh.vertexCount());
+    start.assign(nv + 1, 0);
+    for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+    {
+      if (mesh.isDeleted(t))
+        continue;
+      for (const auto& e : kEdges)
+        ++start[std::min(mesh.vertex(t, e[0]), mesh.vertex(t, e[1])) + 1];
+    }
+    for (std::size_t v = 0; v < nv; ++v)
+      start[v + 1] += start[v];
+    halfTarget.resize(static_cast<std::size_t>(start[nv]));
+    halfTet.resize(halfTarget.size());
+    fill.assign(start.begin(), start.end() - 1);
+    for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+    {
+      if (mesh.isDeleted(t))
+        continue;
+      for (const auto& e : kEdges)
+      {
+        const VertexId a = mesh.vertex(t, e[0]), b = mesh.vertex(t, e[1]);
+        const VertexId lo = std::min(a, b);
+        halfTarget[fill[lo]] = std::max(a, b);
+        halfTet[fill[lo]++] = t;
+      }
+    }
+    // Unique half edges, counted per endpoint for the symmetric adjacency.
+    stamp.assign(nv, -1);
+    std::vector<std::int32_t>& degree = fill;
+    degree.assign(nv + 1, 0);
+    for (std::size_t a = 0; a < nv; ++a)
+    {
+      std::int32_t out = start[a];
+      for (std::int32_t k = start[a]; k < start[a + 1]; ++k)
+      {
+        const VertexId b = halfTarget[k];
+        if (stamp[b] == static_cast<VertexId>(a))
+          continue;
+        stamp[b] = static_cast<VertexId>(a);
+        halfTarget[out] = b;
+        halfTet[out++] = halfTet[k];
+        ++degree[a + 1];
+        ++degree[b + 1];
+      }
+      // Entries [out, start[a+1]) are duplicates: mark the end of the unique ones.
+      if (out < start[a + 1])
+        halfTarget[out] = -1;
+    }
+    offsets.assign(nv + 1, 0);
+    for (std::size_t v = 0; v < nv; ++v)
+      offsets[v + 1] = offsets[v] + degree[v + 1];
+    targets.resize(static_cast<std::size_t>(offsets[nv]));
+    tetOf.resize(targets.size());
+    std::vector<std::int32_t>& cursor = degree;
+    cursor.assign(offsets.begin(), offsets.end() - 1);
+    // Neighbours of v: first the smaller ones (filled from their own lists, in increasing
+    // order of the smaller vertex), then the larger ones; deterministic.
+    for (std::size_t a = 0; a < nv; ++a)
+    {
+      for (std::int32_t k = start[a]; k < start[a + 1] && halfTarget[k] >= 0; ++k)
+      {
+        const VertexId b = halfTarget[k];
+        targets[cursor[b]] = static_cast<VertexId>(a);
+        tetOf[cursor[b]++] = halfTet[k];
+      }
+    }
+    for (std::size_t a = 0; a < nv; ++a)
+    {
+      for (std::int32_t k = start[a]; k < start[a + 1] && halfTarget[k] >= 0; ++k)
+      {
+        targets[cursor[a]] = halfTarget[k];
+        tetOf[cursor[a]++] = halfTet[k];
+      }
+    }
+  }
+};
+
+struct Candidate
+{
+  std::uint64_t order; // (length class descending, Hilbert index)
+  VertexId a, b;
+  TetId tet;
+};
+
+struct WorkspaceDeleter
+{
+  void operator()(InsertionWorkspace* w) const { destroyInsertionWorkspace(w); }
+};
+
+} // namespace
+
+RefinementResult refineInterior(RegionMesh& regionMesh,
+  std::vector<double>& vertexSize,
+  const RefinementOptions& options,
+  const std::function<double(const double*)>& background,
+  const std::function<bool(double)>& progress)
+{
+  const auto startTime = std::chrono::steady_clock::now();
+  RefinementResult result;
+  auto finish = [&](bool ok, std::string error)
+  {
+    result.ok = ok;
+    result.error = std::move(error);
+    result.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
+    return result;
+  };
+  TetMesh& mesh = regionMesh.mesh;
+  std::vector<std::int32_t>& region = regionMesh.region;
+  if (region.size() < static_cast<std::size_t>(mesh.tetCapacity()))
+    return finish(false, "refineInterior: the region array is shorter than the tet array");
+  if (!(options.maxEdgeRatio > 0))
+    return finish(false, "refineInterior: maxEdgeRatio must be positive");
+  if (!(options.size.scale > 0) || !std::isfinite(options.size.scale))
+    return finish(false, "refineInterior: the size scale must be positive");
+  const SizeFieldOptions& sizeOptions = options.size;
+  const VertexId initialCount = mesh.vertexCount();
+
+  // Constrained edges (edges of boundary / interface faces), a tet per vertex.
+  std::vector<char> onConstraint(static_cast<std::size_t>(initialCount), 0);
+  std::unordered_set<std::uint64_t> constrainedEdges;
+  std::vector<TetId> vertexTet(static_cast<std::size_t>(initialCount), -1);
+  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+  {
+    if (mesh.isDeleted(t))
+      continue;
+    for (int i = 0; i < 4; ++i)
+      vertexTet[mesh.vertex(t, i)] = t;
+    for (int f = 0; f < 4; ++f)
+    {
+      if (!faceIsConstrained(mesh, t, f))
+        continue;
+      VertexId fv[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        fv[k] = mesh.vertex(t, kFaceVertices[f][k]);
+        onConstraint[fv[k]] = 1;
+      }
+      for (int k = 0; k < 3; ++k)
+        constrainedEdges.insert(edgeKey(fv[k], fv[(k + 1) % 3]));
+    }
+  }
+
+  EdgeGraph graph;
+  graph.build(mesh);
+
+  // Sizes of the initial vertices: given, else background, else the mean of known neighbours.
+  std::vector<double>& h = vertexSize;
+  const std::size_t given = std::min(h.size(), static_cast<std::size_t>(initialCount));
+  h.resize(static_cast<std::size_t>(initialCount), 0.0);
+  std::vector<char> known(static_cast<std::size_t>(initialCount), 0);
+  for (std::size_t v = 0; v < given; ++v)
+    known[v] = h[v] > 0 && std::isfinite(h[v]);
+  for (VertexId v = 0; v < initialCount; ++v)
+  {
+    if (known[v] || !background)
+      continue;
+    const double b = background(mesh.point(v));
+    if (b > 0 && std::isfinite(b))
+    {
+      h[v] = b;
+      known[v] = 1;
+    }
+  }
+  for (bool progressMade = true; progressMade;)
+  {
+    progressMade = false;
+    std::vector<std::pair<VertexId, double>> assigned;
+    for (VertexId v = 0; v < initialCount; ++v)
+    {
+      if (known[v])
+        continue;
+      double sum = 0;
+      int count = 0;
+      for (std::int32_t k = graph.offsets[v]; k < graph.offsets[v + 1]; ++k)
+        if (known[graph.targets[k]])
+        {
+          sum += h[graph.targets[k]];
+          ++count;
+        }
+      if (count)
+        assigned.emplace_back(v, sum / count);
+    }
+    for (const auto& [v, value] : assigned)
+    {
+      h[v] = value;
+      known[v] = 1;
+      progressMade = true;
+    }
+  }
+  {
+    double sum = 0;
+    int count = 0;
+    for (VertexId v = 0; v < initialCount; ++v)
+      if (known[v])
+      {
+        sum += h[v];
+        ++count;
+      }
+    if (count == 0)
+      return finish(false, "refineInterior: no vertex has a size (no sizes given, no background)");
+    for (VertexId v = 0; v < initialCount; ++v)
+      if (!known[v])
+        h[v] = sum / count; // a vertex in no tet
+  }
+  for (double& value : h)
+    value = scaleAndClampSize(value, sizeOptions);
+  if (sizeOptions.gradation > 1)
+    limitGradation(mesh.coords.data(),
+      initialCount,
+      graph.offsets.data(),
+      graph.targets.data(),
+      sizeOptions.gradation,
+      h.data());
+
+  // Estimated vertex count of a mesh with edges ~h: sqrt(2)/h^3 per unit volume (the density
+  // of the face-centred cubic packing with nearest neighbours h, i.e. one vertex per 6 regular
+  // tets of edge h: 6 * h^3 / (6 sqrt 2)).
+  double lo[3] = { std::numeric_limits<double>::max(),
+    std::numeric_limits<double>::max(),
+    std::numeric_limits<double>::max() };
+  double hi[3] = { -lo[0], -lo[1], -lo[2] };
+  {
+    double estimate = 0;
+    for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+    {
+      if (mesh.isDeleted(t))
+        continue;
+      const double* c[4];
+      double hm = 0;
+      for (int i = 0; i < 4; ++i)
+      {
+        c[i] = mesh.point(mesh.vertex(t, i));
+        hm += 0.25 * h[mesh.vertex(t, i)];
+      }
+      const double u[3] = { c[0][0] - c[3][0], c[0][1] - c[3][1], c[0][2] - c[3][2] };
+      const double v[3] = { c[1][0] - c[3][0], c[1][1] - c[3][1], c[1][2] - c[3][2] };
+      const double w[3] = { c[2][0] - c[3][0], c[2][1] - c[3][1], c[2][2] - c[3][2] };
+      const double volume =
+        std::fabs(u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+          u[2] * (v[0] * w[1] - v[1] * w[0])) /
+        6;
+      estimate += volume * std::sqrt(2.0) / (hm * hm * hm);
+    }
+    result.estimatedPoints = estimate;
+  }
+  for (VertexId v = 0; v < initialCount; ++v)
+    for (int k = 0; k < 3; ++k)
+    {
+      lo[k] = std::min(lo[k], mesh.point(v)[k]);
+      hi[k] = std::max(hi[k], mesh.point(v)[k]);
+    }
+  const double budgetDouble = options.maxPoints >= 0
+    ? static_cast<double>(options.maxPoints)
+    : std::min(8.0 * result.estimatedPoints + 10000.0, 1.0e9);
+  const std::int64_t budget = static_cast<std::int64_t>(budgetDouble);
+  if (initialCount == 0 || mesh.liveTetCount() == 0)
+    return finish(true, "");
+
+  double minH = std::numeric_limits<double>::max();
+  for (double value : h)
+    minH = std::min(minH, value);
+  const bool checkProximity = options.minPointDistance > 0;
+  ProximityGrid grid(minH, std::max(options.minPointDistance, 1e-3), lo);
+  if (checkProximity)
+    for (VertexId v = 0; v < initialCount; ++v)
+      if (vertexTet[v] >= 0)
+        grid.insert(v, mesh.point(v), h[v]);
+
+  std::unique_ptr<InsertionWorkspace, WorkspaceDeleter> workspace(createInsertionWorkspace());
+  std::vector<Candidate> candidates;
+  std::vector<TetId> star;
+  const double extent = std::max({ hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-300 });
+  auto hilbertKey = [&](const double* p)
+  {
+    std::uint32_t g[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      const double s = (p[k] - lo[k]) / extent * 65535.0;
+      g[k] = static_cast<std::uint32_t>(std::max(0.0, std::min(65535.0, s)));
+    }
+    return hilbertIndex(g[0], g[1], g[2], 16);
+  };
+  // The point of ab that halves it in the metric of h, for h linear along the edge:
+  // integral of 1/h from a equal on both sides <=> h(t) = sqrt(h_a h_b).
+  auto splitPoint = [&](VertexId a, VertexId b, double* p)
+  {
+    const double sa = std::sqrt(h[a]), sb = std::sqrt(h[b]);
+    const double s = sa / (sa + sb);
+    const double* pa = mesh.point(a);
+    const double* pb = mesh.point(b);
+    for (int k = 0; k < 3; ++k)
+      p[k] = pa[k] + s * (pb[k] - pa[k]);
+  };
+  auto nearConstrainedFace = [&](TetId t, const double* p, double limit)
+  {
+    const double limit2 = limit * limit;
+    TetId around[5] = { t, -1, -1, -1, -1 };
+    for (int f = 0; f < 4; ++f)
+    {
+      const FaceRef n = mesh.neighbor(t, f);
+      around[f + 1] = n == kNoNeighbor ? -1 : faceTet(n);
+    }
+    for (TetId u : around)
+    {
+      if (u < 0)
+        continue;
+      for (int f = 0; f < 4; ++f)
+      {
+        if (!faceIsConstrained(mesh, u, f))
+          continue;
+        const double* a = mesh.point(mesh.vertex(u, kFaceVertices[f][0]));
+        const double* b = mesh.point(mesh.vertex(u, kFaceVertices[f][1]));
+        const double* c = mesh.point(mesh.vertex(u, kFaceVertices[f][2]));
+        if (pointTriangleDistance2(p, a, b, c) < limit2)
+          return true;
+      }
+    }
+    return false;
+  };
+  auto findEdge = [&](VertexId a, VertexId b, TetId hint) -> TetId
+  {
+    if (hint >= 0 && hint < mesh.tetCapacity() && !mesh.isDeleted(hint) && tetHas(mesh, hint, a) &&
+      tetHas(mesh, hint, b))
+      return hint;
+    const TetId t = vertexTet[a];
+    if (t < 0 || mesh.isDeleted(t) || !tetHas(mesh, t, a))
+      return -1;
+    starOf(mesh, t, a, star);
+    for (TetId u : star)
+      if (tetHas(mesh, u, b))
+        return u;
+    return -1;
+  };
+
+  for (int round = 0; round < options.maxRounds; ++round)
+  {
+    if (round > 0)
+      graph.build(mesh);
+    if (sizeOptions.gradation > 1)
+      limitGradation(mesh.coords.data(),
+        mesh.vertexCount(),
+        graph.offsets.data(),
+        graph.targets.data(),
+        sizeOptions.gradation,
+        h.data());
+    candidates.clear();
+    const VertexId nv = mesh.vertexCount();
+    for (VertexId a = 0; a < nv; ++a)
+    {
+      for (std::int32_t k = graph.offsets[a]; k < graph.offsets[a + 1]; ++k)
+      {
+        const VertexId b = graph.targets[k];
+        if (b < a)
+          continue;
+        if (a < initialCount && b < initialCount && onConstraint[a] && onConstraint[b] &&
+          constrainedEdges.count(edgeKey(a, b)))
+          continue;
+        const double length = distance(mesh.point(a), mesh.point(b)) * 0.5 * (1 / h[a] + 1 / h[b]);
+        if (!(length > options.maxEdgeRatio))
+          continue;
+        double p[3];
+        splitPoint(a, b, p);
+        const std::uint64_t lengthClass =
+          static_cast<std::uint64_t>(std::min(15.0, std::log2(length / options.maxEdgeRatio)));
+        candidates.push_back({ ((15 - lengthClass) << 48) | hilbertKey(p), a, b, graph.tetOf[k] });
+      }
+    }
+    if (candidates.empty())
+      break;
+    result.rounds = round + 1;
+    std::sort(candidates.begin(),
+      candidates.end(),
+      [](const Candidate& x, const Candidate& y)
+      { return x.order != y.order ? x.order < y.order : (x.a != y.a ? x.a < y.a : x.b < y.b); });
+    int insertedThisRound = 0;
+    for (const Candidate& c : candidates)
+    {
+      if (result.insertedPoints >= budget)
+      {
+        result.budgetReached = true;
+        break;
+      }
+      const TetId t = findEdge(c.a, c.b, c.tet);
+      if (t < 0)
+        continue; // the edge is gone: a point inserted this round took its place
+      double p[3];
+      splitPoint(c.a, c.b, p);
+      const TetId container = locatePoint(mesh, p, t);
+      if (container < 0 || region[container] != region[t])
+        continue;
+      double hp;
+      if (background)
+      {
+        hp = background(p);
+        hp = hp > 0 && std::isfinite(hp) ? scaleAndClampSize(hp, sizeOptions)
+                                         : 0.5 * (h[c.a] + h[c.b]);
+      }
+      else
+      {
+        const double* corners[4];
+        double hc[4];
+        for (int i = 0; i < 4; ++i)
+        {
+          const VertexId w = mesh.vertex(container, i);
+          corners[i] = mesh.point(w);
+          hc[i] = h[w];
+        }
+        hp = interpolateSize(p, corners, hc, sizeOptions.interpolationPower);
+        // Interpolated from scaled sizes: clamp only.
+        if (sizeOptions.minSize > 0)
+          hp = std::max(hp, sizeOptions.minSize);
+        if (sizeOptions.maxSize > 0)
+          hp = std::min(hp, sizeOptions.maxSize);
+      }
+      if (checkProximity && grid.hasNear(p, hp, mesh.coords, h))
+      {
+        ++result.rejectedNearVertex;
+        continue;
+      }
+      if (options.minBoundaryDistance > 0 &&
+        nearConstrainedFace(container, p, options.minBoundaryDistance * hp))
+      {
+        ++result.rejectedNearBoundary;
+        continue;
+      }
+      const VertexId v = mesh.addVertex(p[0], p[1], p[2]);
+      const InsertResult inserted = insertVertex(mesh, v, container, *workspace);
+      if (inserted.status != InsertStatus::Inserted)
+      {
+        mesh.coords.resize(3 * static_cast<std::size_t>(v));
+        ++result.rejectedByKernel;
+        continue;
+      }
+      const std::int32_t r = region[t];
+      h.push_back(hp);
+      region.resize(static_cast<std::size_t>(mesh.tetCapacity()), -1);
+      vertexTet.resize(static_cast<std::size_t>(mesh.vertexCount()), -1);
+      starOf(mesh, inserted.tet, v, star);
+      for (TetId u : star)
+      {
+        region[u] = r;
+        for (int i = 0; i < 4; ++i)
+          vertexTet[mesh.vertex(u, i)] = u;
+      }
+      if (checkProximity)
+        grid.insert(v, p, hp);
+      ++result.insertedPoints;
+      ++insertedThisRound;
+      if (progress && (result.insertedPoints & 1023) == 0)
+      {
+        const double fraction = std::min(
+          0.99, result.insertedPoints / std::max(1.0, result.estimatedPoints - initialCount));
+        if (!progress(fraction))
+          return finish(false, "refineInterior: aborted");
+      }
+    }
+    if (insertedThisRound == 0 || result.budgetReached)
+      break;
+  }
+  if (progress && !progress(1.0))
+    return finish(false, "refineInterior: aborted");
+  return finish(true, "");
+}
+
+} // namespace tetmesher

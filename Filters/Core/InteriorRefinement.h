@@ -1,0 +1,70 @@
+// Interior point creation (George-Hecht-Saltel 1990, section 4.4): points are inserted inside
+// the regions, with the constrained Delaunay kernel, where edges are too long for the size
+// field h, until every interior edge is close to its wanted length. The boundary and the
+// region interfaces (constrained faces) are never touched: no point is inserted on them and
+// no cavity crosses them.
+#pragma once
+
+#include "MeshAssembly.h"
+#include "SizeField.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace tetmesher
+{
+
+struct RefinementOptions
+{
+  SizeFieldOptions size;
+  // Budget of inserted points; -1: 8 times the estimate of the field (see the .cxx) + 10000.
+  int maxPoints = -1;
+  // Split interior edges longer than this in units of h (l * mean(1/h_a, 1/h_b)).
+  double maxEdgeRatio = 1.41421356;
+  // A new point is refused when an existing vertex is closer than this, in units of h.
+  double minPointDistance = 0.7;
+  // ... or when a constrained face (boundary, interface) near it is closer than this.
+  double minBoundaryDistance = 0.5;
+  // Bound on the number of rounds (each round splits the edges too long at its start).
+  int maxRounds = 200;
+};
+
+struct RefinementResult
+{
+  bool ok = false;
+  std::string error;
+  int insertedPoints = 0;
+  int rounds = 0;
+  double seconds = 0;
+  bool budgetReached = false;   // stopped by maxPoints (the mesh is valid, just coarser)
+  int rejectedNearVertex = 0;   // candidates refused: too close to a vertex
+  int rejectedNearBoundary = 0; // ... too close to a constrained face
+  int rejectedByKernel = 0;     // ... refused by insertVertex (on a constraint, duplicate)
+  double estimatedPoints = 0;   // integral of sqrt(2)/h^3 over the initial mesh (see .cxx)
+};
+
+// Inserts interior points into `mesh` until no interior edge (an edge of no constrained face;
+// both ends may be boundary vertices) is longer than maxEdgeRatio in the metric of h, or no
+// candidate can be inserted, or the budget is spent.
+//
+// vertexSize: on entry, the raw (unscaled) h of the first vertices (e.g. the input points);
+// entries that are missing, <= 0 or not finite are computed: from `background` when set,
+// else as the mean of the known neighbours' sizes. All sizes are then scaled and clamped by
+// options.size, and the gradation is enforced over the mesh edges (lowering sizes) at the
+// start of every round. On return vertexSize has one entry per vertex: the h actually used.
+// New points get h interpolated (options.size.interpolationPower) in the tet that contains
+// them, or background(p) (scaled and clamped) when `background` is set: it overrides the
+// interpolation (controlling space / background mesh).
+//
+// mesh.region is kept in step: new tets take the region of the tet that contained the point
+// (a cavity never crosses a constrained face). Every topological decision is exact (the
+// insertion kernel); the rejection distances are floating-point heuristics.
+// progress(fraction) returning false aborts (ok = false; the mesh stays valid).
+RefinementResult refineInterior(RegionMesh& mesh,
+  std::vector<double>& vertexSize,
+  const RefinementOptions& options,
+  const std::function<double(const double*)>& background = {},
+  const std::function<bool(double)>& progress = {});
+
+} // namespace tetmesher

@@ -1,0 +1,164 @@
+#include "SizeField.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <queue>
+#include <utility>
+
+namespace tetmesher
+{
+
+namespace
+{
+double distance(const double* a, const double* b)
+{
+  const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+// det[b-a; c-a; d-a]
+double det3(const double* a, const double* b, const double* c, const double* d)
+{
+  const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+  const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+  const double w[3] = { d[0] - a[0], d[1] - a[1], d[2] - a[2] };
+  return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+    u[2] * (v[0] * w[1] - v[1] * w[0]);
+}
+} // namespace
+
+std::vector<double> boundaryEdgeSizes(const double* points,
+  std::int32_t pointCount,
+  const std::int32_t* triangles,
+  std::int32_t triangleCount)
+{
+  std::vector<std::pair<std::int32_t, std::int32_t>> edges;
+  edges.reserve(3 * static_cast<std::size_t>(std::max(triangleCount, 0)));
+  for (std::int32_t t = 0; t < triangleCount; ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      std::int32_t a = triangles[3 * t + k], b = triangles[3 * t + (k + 1) % 3];
+      if (a == b || a < 0 || b < 0 || a >= pointCount || b >= pointCount)
+        continue;
+      edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<double> sum(static_cast<std::size_t>(std::max(pointCount, 0)), 0.0);
+  std::vector<int> count(sum.size(), 0);
+  for (const auto& [a, b] : edges)
+  {
+    const double l =
+      distance(points + 3 * static_cast<std::size_t>(a), points + 3 * static_cast<std::size_t>(b));
+    sum[a] += l;
+    sum[b] += l;
+    ++count[a];
+    ++count[b];
+  }
+  for (std::size_t v = 0; v < sum.size(); ++v)
+    sum[v] = count[v] ? sum[v] / count[v] : 0.0;
+  return sum;
+}
+
+double interpolateSize(const double* p,
+  const double* const corners[4],
+  const double h[4],
+  double power)
+{
+  const double total = det3(corners[0], corners[1], corners[2], corners[3]);
+  double b[4];
+  double sum = 0;
+  if (total != 0 && std::isfinite(total))
+  {
+    // b_i: the volume of the tet with corner i replaced by p, over the whole.
+    for (int i = 0; i < 4; ++i)
+    {
+      const double* c[4] = { corners[0], corners[1], corners[2], corners[3] };
+      c[i] = p;
+      b[i] = std::max(0.0, det3(c[0], c[1], c[2], c[3]) / total);
+      sum += b[i];
+    }
+  }
+  if (!(sum > 0))
+  {
+    for (double& w : b)
+      w = 0.25;
+    sum = 1;
+  }
+  for (double& w : b)
+    w /= sum;
+  if (power == 0)
+  {
+    double s = 0;
+    for (int i = 0; i < 4; ++i)
+      s += b[i] * std::log(h[i]);
+    return std::exp(s);
+  }
+  if (power == 1)
+    return b[0] * h[0] + b[1] * h[1] + b[2] * h[2] + b[3] * h[3];
+  double s = 0;
+  for (int i = 0; i < 4; ++i)
+    s += b[i] * std::pow(h[i], power);
+  return std::pow(s, 1 / power);
+}
+
+double scaleAndClampSize(double h, const SizeFieldOptions& options)
+{
+  h *= options.scale;
+  if (options.minSize > 0)
+    h = std::max(h, options.minSize);
+  if (options.maxSize > 0)
+    h = std::min(h, options.maxSize);
+  return h;
+}
+
+std::int64_t limitGradation(const double* points,
+  std::int32_t pointCount,
+  const std::int32_t* offsets,
+  const std::int32_t* targets,
+  double gradation,
+  double* h)
+{
+  if (!(gradation > 1) || pointCount <= 0)
+    return 0;
+  const double slope = gradation - 1;
+  // Dijkstra from every vertex at once: a vertex popped with its final (smallest) size lowers
+  // its neighbours; ties broken by id, so the result does not depend on the heap.
+  using Entry = std::pair<double, std::int32_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
+  for (std::int32_t v = 0; v < pointCount; ++v)
+    if (offsets[v + 1] > offsets[v])
+      heap.emplace(h[v], v);
+  std::vector<char> lowered(static_cast<std::size_t>(pointCount), 0);
+  std::int64_t changed = 0;
+  while (!heap.empty())
+  {
+    const auto [hv, v] = heap.top();
+    heap.pop();
+    if (hv != h[v])
+      continue; // stale entry
+    const double* pv = points + 3 * static_cast<std::size_t>(v);
+    for (std::int32_t k = offsets[v]; k < offsets[v + 1]; ++k)
+    {
+      const std::int32_t w = targets[k];
+      const double bound = hv + slope * distance(pv, points + 3 * static_cast<std::size_t>(w));
+      if (bound < h[w])
+      {
+        h[w] = bound;
+        if (!lowered[w])
+        {
+          lowered[w] = 1;
+          ++changed;
+        }
+        heap.emplace(bound, w);
+      }
+    }
+  }
+  return changed;
+}
+
+} // namespace tetmesher

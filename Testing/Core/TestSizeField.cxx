@@ -1,0 +1,177 @@
+// Size field: boundary edge sizes, the paper's power-mean interpolation, scaling and clamping,
+// and the gradation limit.
+#include "SizeField.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace tetmesher;
+
+TEST(SizeField, BoundaryEdgeSizesAreMeanEdgeLengths)
+{
+  // Two triangles sharing edge 0-2 of a 2 x 1 rectangle; point 4 is in no triangle.
+  const double points[] = { 0, 0, 0, 2, 0, 0, 2, 1, 0, 0, 1, 0, 5, 5, 5 };
+  const std::int32_t triangles[] = { 0, 1, 2, 0, 2, 3 };
+  std::vector<double> h = boundaryEdgeSizes(points, 5, triangles, 2);
+  ASSERT_EQ(h.size(), 5u);
+  const double d = std::sqrt(5.0);
+  EXPECT_DOUBLE_EQ(h[0], (2 + d + 1) / 3); // edges 0-1, 0-2, 0-3 (0-2 counted once)
+  EXPECT_DOUBLE_EQ(h[1], (2 + 1) / 2.0);
+  EXPECT_DOUBLE_EQ(h[2], (1 + d + 2) / 3);
+  EXPECT_DOUBLE_EQ(h[3], (1 + 2) / 2.0);
+  EXPECT_EQ(h[4], 0.0);
+}
+
+TEST(SizeField, InterpolationIsThePowerMeanOfThePaper)
+{
+  const double a[3] = { 0, 0, 0 }, b[3] = { 1, 0, 0 }, c[3] = { 0, 1, 0 }, d[3] = { 0, 0, 1 };
+  const double* corners[4] = { a, b, c, d };
+  const double h[4] = { 1, 2, 4, 8 };
+  // At the corners: the corner's size, for every power.
+  for (double p : { 1.0, 2.0, 0.0, -1.0 })
+    for (int i = 0; i < 4; ++i)
+      EXPECT_NEAR(interpolateSize(corners[i], corners, h, p), h[i], 1e-12) << p;
+  // At the centroid (b_i = 1/4): the power means.
+  const double g[3] = { 0.25, 0.25, 0.25 };
+  EXPECT_NEAR(interpolateSize(g, corners, h, 1), 15.0 / 4, 1e-12);
+  EXPECT_NEAR(interpolateSize(g, corners, h, 2), std::sqrt((1 + 4 + 16 + 64) / 4.0), 1e-12);
+  EXPECT_NEAR(interpolateSize(g, corners, h, 0), std::pow(64.0, 0.25), 1e-12);
+  EXPECT_NEAR(interpolateSize(g, corners, h, -1), 4 / (1 + 0.5 + 0.25 + 0.125), 1e-12);
+  // Midpoint of edge ab, linear: (1 + 2) / 2. The orientation of the tet does not matter.
+  const double m[3] = { 0.5, 0, 0 };
+  const double* flipped[4] = { b, a, c, d };
+  const double hf[4] = { 2, 1, 4, 8 };
+  EXPECT_NEAR(interpolateSize(m, corners, h, 1), 1.5, 1e-12);
+  EXPECT_NEAR(interpolateSize(m, flipped, hf, 1), 1.5, 1e-12);
+  // A point outside: clamped to the nearest face's weights (never extrapolated below min h).
+  const double outside[3] = { -1, -1, -1 };
+  EXPECT_GE(interpolateSize(outside, corners, h, 1), 1.0);
+  // Flat tet: equal weights.
+  const double* flat[4] = { a, b, c, g };
+  const double gz[3] = { 0.25, 0.25, 0 };
+  flat[3] = gz;
+  EXPECT_NEAR(interpolateSize(g, flat, h, 1), 15.0 / 4, 1e-12);
+}
+
+TEST(SizeField, ScaleAndClamp)
+{
+  SizeFieldOptions o;
+  o.scale = 2;
+  EXPECT_EQ(scaleAndClampSize(3, o), 6);
+  o.minSize = 7;
+  EXPECT_EQ(scaleAndClampSize(3, o), 7);
+  o.maxSize = 10;
+  EXPECT_EQ(scaleAndClampSize(30, o), 10);
+  o.minSize = 0;
+  EXPECT_EQ(scaleAndClampSize(1, o), 2);
+}
+
+namespace
+{
+// A path 0-1-...-(n-1) along x with spacing dx, as symmetric CSR.
+void path(int n,
+  double dx,
+  std::vector<double>& pts,
+  std::vector<std::int32_t>& off,
+  std::vector<std::int32_t>& adj)
+{
+  pts.clear();
+  off.assign(1, 0);
+  adj.clear();
+  for (int i = 0; i < n; ++i)
+  {
+    pts.insert(pts.end(), { i * dx, 0.0, 0.0 });
+    if (i > 0)
+      adj.push_back(i - 1);
+    if (i + 1 < n)
+      adj.push_back(i + 1);
+    off.push_back(static_cast<std::int32_t>(adj.size()));
+  }
+}
+} // namespace
+
+TEST(SizeField, GradationBoundsGrowthAlongEdges)
+{
+  std::vector<double> pts;
+  std::vector<std::int32_t> off, adj;
+  path(11, 0.1, pts, off, adj);
+  std::vector<double> h(11, 1.0);
+  h[0] = 0.01;
+  const std::int64_t changed =
+    limitGradation(pts.data(), 11, off.data(), adj.data(), 1.5, h.data());
+  EXPECT_EQ(changed, 10);
+  for (int i = 0; i < 11; ++i)
+    EXPECT_NEAR(h[i], 0.01 + 0.5 * 0.1 * i, 1e-12) << i;
+  // Off: nothing changes.
+  std::vector<double> h2(11, 1.0);
+  h2[0] = 0.01;
+  EXPECT_EQ(limitGradation(pts.data(), 11, off.data(), adj.data(), 1.0, h2.data()), 0);
+  EXPECT_EQ(h2[5], 1.0);
+  // Only lowers: a large value in the middle of small ones is cut down, small ones stay.
+  std::vector<double> h3(11, 0.05);
+  h3[5] = 10;
+  limitGradation(pts.data(), 11, off.data(), adj.data(), 1.5, h3.data());
+  EXPECT_NEAR(h3[5], 0.05 + 0.05, 1e-12);
+  EXPECT_EQ(h3[4], 0.05);
+}
+
+TEST(SizeField, GradationHoldsOnEveryEdgeOfARandomGraph)
+{
+  // Random points, each joined to its 6 nearest (symmetrised); random sizes over 100x.
+  const int n = 400;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<double> pts(3 * n), h(n);
+  for (double& x : pts)
+    x = u(rng);
+  for (double& x : h)
+    x = std::pow(10.0, -2 + 2 * u(rng));
+  std::vector<std::vector<std::int32_t>> nb(n);
+  for (int i = 0; i < n; ++i)
+  {
+    std::vector<std::pair<double, int>> d;
+    for (int j = 0; j < n; ++j)
+      if (j != i)
+      {
+        double s = 0;
+        for (int k = 0; k < 3; ++k)
+          s += (pts[3 * i + k] - pts[3 * j + k]) * (pts[3 * i + k] - pts[3 * j + k]);
+        d.emplace_back(s, j);
+      }
+    std::partial_sort(d.begin(), d.begin() + 6, d.end());
+    for (int k = 0; k < 6; ++k)
+    {
+      nb[i].push_back(d[k].second);
+      nb[d[k].second].push_back(i);
+    }
+  }
+  std::vector<std::int32_t> off(1, 0), adj;
+  for (auto& l : nb)
+  {
+    std::sort(l.begin(), l.end());
+    l.erase(std::unique(l.begin(), l.end()), l.end());
+    adj.insert(adj.end(), l.begin(), l.end());
+    off.push_back(static_cast<std::int32_t>(adj.size()));
+  }
+  const std::vector<double> original = h;
+  limitGradation(pts.data(), n, off.data(), adj.data(), 1.3, h.data());
+  int violations = 0;
+  for (int i = 0; i < n; ++i)
+  {
+    EXPECT_LE(h[i], original[i]);
+    for (std::int32_t k = off[i]; k < off[i + 1]; ++k)
+    {
+      const int j = adj[k];
+      double s = 0;
+      for (int c = 0; c < 3; ++c)
+        s += (pts[3 * i + c] - pts[3 * j + c]) * (pts[3 * i + c] - pts[3 * j + c]);
+      violations += h[j] > h[i] + 0.3 * std::sqrt(s) * (1 + 1e-12);
+    }
+  }
+  EXPECT_EQ(violations, 0);
+  // The smallest size is a fixed point.
+  const auto m = std::min_element(original.begin(), original.end()) - original.begin();
+  EXPECT_EQ(h[m], original[m]);
+}
