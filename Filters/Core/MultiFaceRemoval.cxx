@@ -1,0 +1,132 @@
+#include "MultiFaceRemoval.h"
+
+#include <array>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+namespace tetmesher
+{
+namespace optimization
+{
+
+bool findMultiFaceRemoval(const Context& ctx, TetId t, int f, LocalMove& out)
+{
+  // Faces sandwiched between apexes a and b, oriented so that orient3d(face, a) > 0 (their
+  // normal points toward b), each with its two tets. One face: the 2-3 flip.
+  struct Sandwiched
+  {
+    std::array<VertexId, 3> v;
+    TetId ta, tb;
+  };
+  if (ctx.mesh.isConstrained(t, f))
+    return false;
+  FaceRef n0 = ctx.mesh.neighbor(t, f);
+  if (n0 == kNoNeighbor)
+    return false;
+  const VertexId a = ctx.mesh.vertex(t, f);
+  const VertexId b = ctx.mesh.vertex(faceTet(n0), faceIndex(n0));
+  const int* fv = kFaceVertices[f];
+  std::vector<Sandwiched> faces = {
+    { { ctx.mesh.vertex(t, fv[0]), ctx.mesh.vertex(t, fv[1]), ctx.mesh.vertex(t, fv[2]) },
+      t,
+      faceTet(n0) }
+  };
+  bool found = false;
+  std::vector<TetVertices> newTets;
+  std::vector<std::pair<std::size_t, int>> edges; // boundary edge: face index, edge index
+  for (int iter = 0; iter < ctx.options.maxMultiFace; ++iter)
+  {
+    // Boundary edges of the face set (directed edges whose reverse is not in the set).
+    edges.clear();
+    for (std::size_t i = 0; i < faces.size(); ++i)
+      for (int e = 0; e < 3; ++e)
+      {
+        VertexId u = faces[i].v[e], v = faces[i].v[(e + 1) % 3];
+        bool inner = false;
+        for (std::size_t j = 0; j < faces.size() && !inner; ++j)
+          for (int g = 0; g < 3; ++g)
+            if (faces[j].v[g] == v && faces[j].v[(g + 1) % 3] == u)
+              inner = true;
+        if (!inner)
+          edges.push_back({ i, e });
+      }
+    newTets.clear();
+    WorstOf newMin;
+    bool valid = true;
+    std::size_t worst = 0;
+    double worstScore = kInf;
+    for (std::size_t k = 0; k < edges.size(); ++k)
+    {
+      const Sandwiched& F = faces[edges[k].first];
+      int e = edges[k].second;
+      TetVertices nt = { F.v[e], F.v[(e + 1) % 3], b, a };
+      double sc = -1;
+      if (ctx.positive(nt[0], nt[1], nt[2], nt[3]))
+      {
+        TetEval ev = ctx.eval(nt);
+        newMin.add(ev);
+        sc = ev.score;
+      }
+      else
+        valid = false;
+      if (sc < worstScore)
+      {
+        worstScore = sc;
+        worst = k;
+      }
+      newTets.push_back(nt);
+    }
+    if (valid)
+    {
+      WorstOf oldMin;
+      for (const Sandwiched& F : faces)
+      {
+        oldMin.add(ctx.evalTet(F.ta));
+        oldMin.add(ctx.evalTet(F.tb));
+      }
+      if (ctx.accept(newMin, oldMin) && (!found || newMin.score > out.newMin.score))
+      {
+        found = true;
+        out.oldTets.clear();
+        for (const Sandwiched& F : faces)
+        {
+          out.oldTets.push_back(F.ta);
+          out.oldTets.push_back(F.tb);
+        }
+        out.newTets = newTets;
+        out.newMin = newMin;
+        out.kind = faces.size() == 1 ? 0 : 2;
+      }
+    }
+    // Grow across the bottleneck edge (u,v) of face (u,v,w): the next sandwiched face is
+    // (v,u,z) with tets (u,v,a,z) and (u,v,b,z) beyond the faces (u,v,a) and (u,v,b).
+    const Sandwiched F = faces[edges[worst].first];
+    const int e = edges[worst].second;
+    const VertexId u = F.v[e], v = F.v[(e + 1) % 3], w = F.v[(e + 2) % 3];
+    int wa = localIndex(ctx.mesh, F.ta, w), wb = localIndex(ctx.mesh, F.tb, w);
+    if (ctx.mesh.isConstrained(F.ta, wa) || ctx.mesh.isConstrained(F.tb, wb))
+      break;
+    FaceRef na = ctx.mesh.neighbor(F.ta, wa), nb = ctx.mesh.neighbor(F.tb, wb);
+    if (na == kNoNeighbor || nb == kNoNeighbor)
+      break;
+    TetId ta = faceTet(na), tb = faceTet(nb);
+    VertexId z = ctx.mesh.vertex(ta, faceIndex(na));
+    if (ctx.mesh.vertex(tb, faceIndex(nb)) != z)
+      break;
+    int ia = localIndex(ctx.mesh, ta, a);
+    FaceRef mid = ctx.mesh.neighbor(ta, ia);
+    if (mid == kNoNeighbor || faceTet(mid) != tb || ctx.mesh.isConstrained(ta, ia))
+      break;
+    bool seen = false;
+    for (const Sandwiched& G : faces)
+      seen = seen || G.ta == ta || G.tb == tb;
+    if (seen || !ctx.positive(v, u, z, a))
+      break;
+    faces.push_back({ { v, u, z }, ta, tb });
+  }
+  return found;
+}
+
+} // namespace optimization
+} // namespace tetmesher

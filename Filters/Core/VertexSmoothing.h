@@ -1,0 +1,26 @@
+// Vertex smoothing for the quality optimiser (George-Hecht-Saltel 1990 section 4.3 c,
+// Klingner-Shewchuk 2007): a free vertex (on no constrained face) is moved to the best of
+// two weighted barycentres of its ball (volume-weighted centroids of the ball's tets; mean
+// of the ideal apexes over the ball's outer faces), then by a few steps of ascent on the
+// worst quality of the ball: the least-norm point of the convex hull of the gradients of the
+// nearly-worst tets (finite differences) gives a direction raising them all, followed by a
+// line search that keeps the best acceptable position. A position is kept only if every tet
+// of the ball stays positive (exact orient3d) and Context::accept holds for the ball.
+#pragma once
+
+#include "OptimizationContext.h"
+
+namespace tetmesher
+{
+namespace optimization
+{
+
+// Worst values over `star`; valid = false when a tet of it is not positive (exact).
+WorstOf worstOfStar(const Context& ctx, const std::vector<TetId>& star, bool& valid);
+
+// Moves free vertex v when that improves its ball (see above). `star` is scratch space.
+// Returns true when the vertex moved.
+bool smoothVertex(Context& ctx, VertexId v, std::vector<TetId>& star);
+
+} // namespace optimization
+} // namespace tetmesher
