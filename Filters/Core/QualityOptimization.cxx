@@ -29,6 +29,12 @@ public:
   }
 
   OptimizationResult run(const std::function<bool(double)>& progress);
+  // Recomputes the "after" statistics (Q, dihedral, share below this optimizer's target).
+  void summarizeAfter(OptimizationResult& r) const
+  {
+    summarize(
+      r.minQualityAfter, r.meanAfter, r.minDihedralAfter, r.shareBelowTargetAfter, r.tetsAfter);
+  }
 
 private:
   void summarize(double& minQ, double& meanQ, double& minDih, double& share, int& count) const;
@@ -255,8 +261,35 @@ OptimizationResult optimizeMesh(RegionMesh& mesh,
   const std::vector<double>* vertexSize,
   const std::function<bool(double)>& progress)
 {
-  Optimizer optimizer(mesh, options, vertexSize);
-  return optimizer.run(progress);
+  const bool dihedralStage =
+    options.dihedralTarget > 0 && options.measure == QualityMeasure::PaperQ;
+  std::function<bool(double)> firstProgress = progress;
+  if (progress && dihedralStage)
+    firstProgress = [&](double x) { return progress(0.5 * x); };
+  Optimizer first(mesh, options, vertexSize);
+  OptimizationResult r = first.run(firstProgress);
+  if (!r.ok || !dihedralStage)
+    return r;
+  // Second stage: driven by the smallest dihedral angle, Q guarded by its minimum.
+  OptimizationOptions o2 = options;
+  o2.measure = QualityMeasure::MinDihedral;
+  o2.qualityTarget = options.dihedralTarget / optimization::kRegularDihedral;
+  std::function<bool(double)> secondProgress;
+  if (progress)
+    secondProgress = [&](double x) { return progress(0.5 + 0.5 * x); };
+  Optimizer second(mesh, o2, vertexSize);
+  OptimizationResult r2 = second.run(secondProgress);
+  r.ok = r2.ok;
+  r.error = r2.error;
+  r.flips23 += r2.flips23;
+  r.flips32 += r2.flips32;
+  r.edgeRemovals += r2.edgeRemovals;
+  r.multiFaceRemovals += r2.multiFaceRemovals;
+  r.smoothedVertices += r2.smoothedVertices;
+  r.passesRun += r2.passesRun;
+  r.seconds += r2.seconds;
+  first.summarizeAfter(r);
+  return r;
 }
 
 } // namespace tetmesher

@@ -43,6 +43,10 @@ struct OptimizationOptions
   int maxEdgeRing = 10;   // longest edge ring that edge removal retriangulates
   int maxMultiFace = 8;   // most faces one multi-face removal takes out (1: 2-3 flips only)
   int smoothingSteps = 8; // gradient-ascent steps per vertex after the barycentre
+  // With PaperQ: when > 0 (degrees), a second stage follows, driven by the smallest dihedral
+  // angle (target dihedralTarget, i.e. qualityTarget = dihedralTarget / 70.53), with the
+  // minimum Q reached by the first stage guarded. Counters add up over both stages.
+  double dihedralTarget = 0;
 };
 
 struct OptimizationResult
