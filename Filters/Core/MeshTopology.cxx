@@ -34,6 +34,25 @@ TetId VertexTetIndex::tetOf(const TetMesh& mesh, VertexId v)
   return vertexTet_[v];
 }
 
+void VertexTetIndex::startVisit()
+{
+  if (++epoch_ == 0)
+  {
+    std::fill(stamp_.begin(), stamp_.end(), 0u);
+    epoch_ = 1;
+  }
+}
+
+bool VertexTetIndex::visit(TetId t)
+{
+  if (static_cast<std::size_t>(t) >= stamp_.size())
+    stamp_.resize(2 * static_cast<std::size_t>(t) + 16, 0u);
+  if (stamp_[t] == epoch_)
+    return false;
+  stamp_[t] = epoch_;
+  return true;
+}
+
 int localIndex(const TetMesh& mesh, TetId t, VertexId v)
 {
   for (int i = 0; i < 4; ++i)
@@ -50,6 +69,8 @@ void vertexStar(const TetMesh& mesh, VertexTetIndex& index, VertexId v, std::vec
   TetId start = index.tetOf(mesh, v);
   if (start < 0)
     return;
+  index.startVisit();
+  index.visit(start);
   star.push_back(start);
   for (std::size_t k = 0; k < star.size(); ++k)
   {
@@ -61,7 +82,7 @@ void vertexStar(const TetMesh& mesh, VertexTetIndex& index, VertexId v, std::vec
       if (f == iv || n == kNoNeighbor)
         continue;
       TetId u = faceTet(n);
-      if (std::find(star.begin(), star.end(), u) == star.end())
+      if (index.visit(u))
         star.push_back(u);
     }
   }

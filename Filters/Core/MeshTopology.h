@@ -24,8 +24,15 @@ public:
   TetId tetOf(const TetMesh& mesh, VertexId v);
   void note(TetId t, const TetMesh& mesh);
 
+  // Visit marks for one traversal at a time (stamps, so starting one is O(1)).
+  void startVisit();
+  // True the first time t is visited in the current traversal.
+  bool visit(TetId t);
+
 private:
   std::vector<TetId> vertexTet_;
+  std::vector<std::uint32_t> stamp_;
+  std::uint32_t epoch_ = 0;
 };
 
 // Local index (0..3) of v in tet t, or -1.
