@@ -411,16 +411,19 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     {
       if (known[v])
         continue;
-      double sum = 0;
+      double sum = 0, low = std::numeric_limits<double>::max(), high = 0;
       int count = 0;
       for (std::int32_t k = graph.offsets[v]; k < graph.offsets[v + 1]; ++k)
         if (known[graph.targets[k]])
         {
-          sum += h[graph.targets[k]];
+          const double x = h[graph.targets[k]];
+          sum += x;
+          low = std::min(low, x);
+          high = std::max(high, x);
           ++count;
         }
       if (count)
-        assigned.emplace_back(v, sum / count);
+        assigned.emplace_back(v, low == high ? low : sum / count);
     }
     for (const auto& [v, value] : assigned)
     {

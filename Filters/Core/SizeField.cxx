@@ -69,6 +69,8 @@ double interpolateSize(const double* p,
   const double h[4],
   double power)
 {
+  if (h[0] == h[1] && h[0] == h[2] && h[0] == h[3])
+    return h[0]; // exactly, whatever the weights' rounding
   const double total = det3(corners[0], corners[1], corners[2], corners[3]);
   double b[4];
   double sum = 0;
