@@ -48,7 +48,7 @@ struct LocalMove
   std::vector<TetId> oldTets;
   std::vector<TetVertices> newTets;
   WorstOf newMin;
-  int kind = 0; // 0: 2-3 flip, 1: edge removal (ring 3 = 3-2 flip), 2: multi-face removal
+  int kind = 0; // 0: 2-3 flip, 1: edge removal (3-2 flip for 3 tets), 2: multi-face, 3: insertion
 };
 
 class Context
@@ -58,9 +58,15 @@ public:
     : rm(regionMesh)
     , mesh(regionMesh.mesh)
     , options(opts)
-    , size(h)
   {
+    if (h)
+    {
+      sizeCopy = *h;
+      size = &sizeCopy;
+    }
   }
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
 
   const double* P(VertexId v) const { return mesh.point(v); }
 
@@ -108,7 +114,8 @@ public:
   RegionMesh& rm;
   TetMesh& mesh;
   OptimizationOptions options;
-  const std::vector<double>* size;
+  const std::vector<double>* size = nullptr; // &sizeCopy when a size field is given
+  std::vector<double> sizeCopy;              // grows with inserted vertices
   VertexTetIndex index;
   std::vector<char> fixed; // per vertex: on a constrained face, or in no tet; never moves
   double floorQ = 0, floorDih = 0;

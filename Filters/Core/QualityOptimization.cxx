@@ -6,6 +6,7 @@
 #include "EdgeRemoval.h"
 #include "MultiFaceRemoval.h"
 #include "OptimizationContext.h"
+#include "VertexInsertion.h"
 #include "VertexSmoothing.h"
 
 #include <algorithm>
@@ -44,6 +45,7 @@ private:
   Context ctx_;
   std::vector<TetId> star_;
   OptimizationResult res_;
+  bool insertionPass_ = false; // the previous pass changed nothing: try insertion
 };
 
 void Optimizer::summarize(double& minQ,
@@ -90,6 +92,8 @@ void Optimizer::apply(const LocalMove& mv, std::vector<TetId>& created)
     ++res_.flips23;
   else if (mv.kind == 2)
     ++res_.multiFaceRemovals;
+  else if (mv.kind == 3)
+    return; // vertex insertion, counted by the caller
   else if (mv.oldTets.size() == 3)
     ++res_.flips32;
   else
@@ -119,7 +123,19 @@ bool Optimizer::improveTet(TetId t, std::vector<TetId>& created)
     consider(findMultiFaceRemoval(ctx_, t, f, cand));
   }
   if (!found)
-    return false;
+  {
+    if (!insertionPass_ || !findVertexInsertion(ctx_, t, best))
+      return false;
+    ctx_.fixed.resize(static_cast<std::size_t>(ctx_.mesh.vertexCount()), 0);
+    apply(best, created);
+    ++res_.insertedVertices;
+    if (ctx_.options.smoothing && smoothVertex(ctx_, ctx_.mesh.vertexCount() - 1, star_))
+    {
+      ++res_.smoothedVertices;
+      created = star_; // the new vertex's ball, whatever it moved
+    }
+    return true;
+  }
   apply(best, created);
   return true;
 }
@@ -200,7 +216,7 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
           if (!ctx_.fixed[static_cast<std::size_t>(v)])
             vs.push_back(v);
         }
-      std::vector<char> seen(nv, 0);
+      std::vector<char> seen(static_cast<std::size_t>(ctx_.mesh.vertexCount()), 0);
       for (VertexId v : vs)
       {
         if (seen[static_cast<std::size_t>(v)])
@@ -242,7 +258,14 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
       break;
     }
     if (changes == 0)
-      break;
+    {
+      // Stalled: vertex insertion gets one pass (Klingner-Shewchuk use it as a last resort).
+      if (!ctx_.options.insertion || insertionPass_)
+        break;
+      insertionPass_ = true;
+    }
+    else
+      insertionPass_ = false;
   }
 
   summarize(res_.minQualityAfter,
@@ -286,6 +309,7 @@ OptimizationResult optimizeMesh(RegionMesh& mesh,
   r.edgeRemovals += r2.edgeRemovals;
   r.multiFaceRemovals += r2.multiFaceRemovals;
   r.smoothedVertices += r2.smoothedVertices;
+  r.insertedVertices += r2.insertedVertices;
   r.passesRun += r2.passesRun;
   r.seconds += r2.seconds;
   first.summarizeAfter(r);

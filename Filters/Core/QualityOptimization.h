@@ -40,6 +40,9 @@ struct OptimizationOptions
   QualityMeasure measure = QualityMeasure::PaperQ;
   bool smoothing = true;
   bool flips = true;
+  // Insert a vertex at the centroid of a bad tet that no flip improves (cavity grown
+  // greedily; kept only when acceptable). Adds vertices to the mesh.
+  bool insertion = false;
   int maxEdgeRing = 10;   // longest edge ring that edge removal retriangulates
   int maxMultiFace = 8;   // most faces one multi-face removal takes out (1: 2-3 flips only)
   int smoothingSteps = 8; // gradient-ascent steps per vertex after the barycentre
@@ -62,6 +65,7 @@ struct OptimizationResult
   int tetsBefore = 0, tetsAfter = 0;
   int flips23 = 0, flips32 = 0, edgeRemovals = 0, smoothedVertices = 0;
   int multiFaceRemovals = 0; // more than one face (one face: flips23)
+  int insertedVertices = 0;  // by vertex insertion (options.insertion)
   int passesRun = 0;
   double seconds = 0;
 };

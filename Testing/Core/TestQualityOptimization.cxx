@@ -376,6 +376,27 @@ TEST(QualityOptimization, LargerJitteredGridTiming)
   EXPECT_LT(r.seconds, 30.0);
 }
 
+TEST(QualityOptimization, VertexInsertionKeepsInvariants)
+{
+  // Insertion is tried once the other moves stall; check every invariant with it on.
+  for (int surface = 0; surface < 2; ++surface)
+  {
+    RegionMesh rm;
+    if (surface == 0)
+      ASSERT_TRUE(buildRegionMesh(tt::icosphere(2), rm));
+    else
+      rm = jitteredGridCube(4);
+    const VertexId verticesBefore = rm.mesh.vertexCount();
+    OptimizationOptions options;
+    options.insertion = true;
+    options.passes = 10;
+    OptimizationResult r = optimizeAndCheck(
+      surface == 0 ? "icosphere 2 + insertion" : "cube + 4^3 grid + insertion", rm, options);
+    std::printf("    inserted vertices %d\n", r.insertedVertices);
+    EXPECT_EQ(rm.mesh.vertexCount(), verticesBefore + r.insertedVertices);
+  }
+}
+
 TEST(QualityOptimization, MinDihedralMeasure)
 {
   RegionMesh rm = jitteredGridCube(5);

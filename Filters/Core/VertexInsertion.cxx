@@ -1,0 +1,178 @@
+#include "VertexInsertion.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+namespace tetmesher
+{
+namespace optimization
+{
+
+namespace
+{
+
+// Grows the cavity from t for the vertex xv (already placed); keeps the best acceptable one.
+bool growCavity(Context& ctx, TetId t, VertexId xv, int maxCavity, LocalMove& out)
+{
+  TetMesh& m = ctx.mesh;
+  std::vector<TetId> cavity = { t };
+  std::vector<std::pair<TetId, int>> faces; // boundary faces of the cavity
+  std::vector<std::array<VertexId, 2>> edges;
+  std::vector<TetVertices> newTets;
+  bool found = false;
+  for (int iter = 0; iter < maxCavity; ++iter)
+  {
+    faces.clear();
+    for (TetId c : cavity)
+      for (int f = 0; f < 4; ++f)
+      {
+        FaceRef n = m.neighbor(c, f);
+        if (n == kNoNeighbor || std::find(cavity.begin(), cavity.end(), faceTet(n)) == cavity.end())
+          faces.push_back({ c, f });
+      }
+    newTets.clear();
+    WorstOf newMin;
+    bool valid = true;
+    std::size_t worst = 0;
+    double worstScore = kInf;
+    edges.clear();
+    for (std::size_t i = 0; i < faces.size(); ++i)
+    {
+      const auto [c, f] = faces[i];
+      const int* fv = kFaceVertices[f];
+      TetVertices nt = { m.vertex(c, fv[0]), m.vertex(c, fv[1]), m.vertex(c, fv[2]), xv };
+      for (int e = 0; e < 3; ++e)
+        edges.push_back({ std::min(nt[e], nt[(e + 1) % 3]), std::max(nt[e], nt[(e + 1) % 3]) });
+      double sc = -1;
+      if (ctx.positive(nt[0], nt[1], nt[2], nt[3]))
+      {
+        TetEval ev = ctx.eval(nt);
+        newMin.add(ev);
+        sc = ev.score;
+      }
+      else
+        valid = false;
+      if (sc < worstScore)
+      {
+        worstScore = sc;
+        worst = i;
+      }
+      newTets.push_back(nt);
+    }
+    if (valid)
+    {
+      // A cavity whose boundary is pinched along an edge would glue ambiguously.
+      std::sort(edges.begin(), edges.end());
+      for (std::size_t i = 0; i < edges.size() && valid; i += 2)
+        valid = i + 1 < edges.size() && edges[i] == edges[i + 1] &&
+          (i + 2 >= edges.size() || edges[i + 2] != edges[i]);
+    }
+    if (valid)
+    {
+      WorstOf oldMin;
+      for (TetId c : cavity)
+        oldMin.add(ctx.evalTet(c));
+      if (ctx.accept(newMin, oldMin) && (!found || newMin.score > out.newMin.score))
+      {
+        found = true;
+        out.oldTets = cavity;
+        out.newTets = newTets;
+        out.newMin = newMin;
+        out.kind = 3;
+      }
+    }
+    const auto [c, f] = faces[worst];
+    FaceRef n = m.neighbor(c, f);
+    if (n == kNoNeighbor || m.isConstrained(c, f))
+      break;
+    cavity.push_back(faceTet(n));
+  }
+  return found;
+}
+
+} // namespace
+
+bool findVertexInsertion(Context& ctx, TetId t, LocalMove& out, int maxCavity)
+{
+  TetMesh& m = ctx.mesh;
+  // Candidate positions: the centroid, and over each face the apex of the regular tet on
+  // that face (inside, toward the opposite vertex).
+  std::vector<std::array<double, 3>> candidates;
+  std::array<double, 3> centroid = { 0, 0, 0 };
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k)
+      centroid[k] += 0.25 * m.point(m.vertex(t, i))[k];
+  candidates.push_back(centroid);
+  for (int f = 0; f < 4; ++f)
+  {
+    const int* fv = kFaceVertices[f];
+    const double* a = m.point(m.vertex(t, fv[0]));
+    const double* b = m.point(m.vertex(t, fv[1]));
+    const double* c = m.point(m.vertex(t, fv[2]));
+    double ab[3], ac[3], bc[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      ab[k] = b[k] - a[k];
+      ac[k] = c[k] - a[k];
+      bc[k] = c[k] - b[k];
+    }
+    double nrm[3] = {
+      ab[1] * ac[2] - ab[2] * ac[1], ab[2] * ac[0] - ab[0] * ac[2], ab[0] * ac[1] - ab[1] * ac[0]
+    };
+    double nn = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+    if (!(nn > 0))
+      continue;
+    auto len = [](const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); };
+    double le = (len(ab) + len(ac) + len(bc)) / 3;
+    std::array<double, 3> apex;
+    for (int k = 0; k < 3; ++k) // the outward normal points away from the tet: go against it
+      apex[k] = (a[k] + b[k] + c[k]) / 3 - nrm[k] / nn * le * std::sqrt(2.0 / 3.0);
+    candidates.push_back(apex);
+  }
+
+  double h = 0;
+  if (ctx.size)
+    for (int i = 0; i < 4; ++i)
+      h += 0.25 * ctx.sizeCopy[static_cast<std::size_t>(m.vertex(t, i))];
+  const VertexId xv = m.addVertex(centroid[0], centroid[1], centroid[2]);
+  if (ctx.size)
+  {
+    ctx.sizeCopy.resize(static_cast<std::size_t>(xv), h);
+    ctx.sizeCopy.push_back(h);
+  }
+  bool found = false;
+  std::array<double, 3> best = centroid;
+  LocalMove cand;
+  for (const auto& x : candidates)
+  {
+    double* p = &m.coords[3 * static_cast<std::size_t>(xv)];
+    p[0] = x[0];
+    p[1] = x[1];
+    p[2] = x[2];
+    if (growCavity(ctx, t, xv, maxCavity, cand) && (!found || cand.newMin.score > out.newMin.score))
+    {
+      found = true;
+      out = cand;
+      best = x;
+    }
+  }
+  if (!found)
+  {
+    m.coords.resize(m.coords.size() - 3);
+    if (ctx.size)
+      ctx.sizeCopy.resize(static_cast<std::size_t>(xv));
+    return false;
+  }
+  double* p = &m.coords[3 * static_cast<std::size_t>(xv)];
+  p[0] = best[0];
+  p[1] = best[1];
+  p[2] = best[2];
+  return true;
+}
+
+} // namespace optimization
+} // namespace tetmesher
