@@ -43,13 +43,35 @@ bool findMultiFaceRemoval(const Context& ctx, TetId t, int f, LocalMove& out)
       for (int e = 0; e < 3; ++e)
       {
         VertexId u = faces[i].v[e], v = faces[i].v[(e + 1) % 3];
-        bool inner = false;
-        for (std::size_t j = 0; j < faces.size() && !inner; ++j)
+        std::size_t other = faces.size();
+        for (std::size_t j = 0; j < faces.size() && other == faces.size(); ++j)
           for (int g = 0; g < 3; ++g)
             if (faces[j].v[g] == v && faces[j].v[(g + 1) % 3] == u)
-              inner = true;
-        if (!inner)
+              other = j;
+        if (other == faces.size())
+        {
           edges.push_back({ i, e });
+          continue;
+        }
+        // An inner edge: the faces (u,v,a) and (u,v,b) are inside the removed region, so
+        // they must join this face's tets to the other face's, unconstrained.
+        VertexId w = faces[i].v[(e + 2) % 3];
+        int wa = localIndex(ctx.mesh, faces[i].ta, w), wb = localIndex(ctx.mesh, faces[i].tb, w);
+        FaceRef na = ctx.mesh.neighbor(faces[i].ta, wa), nb = ctx.mesh.neighbor(faces[i].tb, wb);
+        if (ctx.mesh.isConstrained(faces[i].ta, wa) || ctx.mesh.isConstrained(faces[i].tb, wb) ||
+          na == kNoNeighbor || nb == kNoNeighbor || faceTet(na) != faces[other].ta ||
+          faceTet(nb) != faces[other].tb)
+          return found;
+      }
+    // A vertex of the set on no boundary edge would vanish from the mesh.
+    for (const Sandwiched& F : faces)
+      for (VertexId x : F.v)
+      {
+        bool onBoundary = false;
+        for (const auto& [i, e] : edges)
+          onBoundary = onBoundary || faces[i].v[e] == x || faces[i].v[(e + 1) % 3] == x;
+        if (!onBoundary)
+          return found;
       }
     newTets.clear();
     WorstOf newMin;

@@ -33,6 +33,19 @@ bool growCavity(Context& ctx, TetId t, VertexId xv, int maxCavity, LocalMove& ou
         FaceRef n = m.neighbor(c, f);
         if (n == kNoNeighbor || std::find(cavity.begin(), cavity.end(), faceTet(n)) == cavity.end())
           faces.push_back({ c, f });
+        else if (m.isConstrained(c, f))
+          return found; // a constraint inside the cavity (reached around it)
+      }
+    // A cavity vertex on no boundary face would vanish from the mesh.
+    for (TetId c : cavity)
+      for (int i = 0; i < 4; ++i)
+      {
+        VertexId x = m.vertex(c, i);
+        bool onBoundary = false;
+        for (const auto& [bc, bf] : faces)
+          onBoundary = onBoundary || (m.vertex(bc, bf) != x && localIndex(m, bc, x) >= 0);
+        if (!onBoundary)
+          return found;
       }
     newTets.clear();
     WorstOf newMin;
