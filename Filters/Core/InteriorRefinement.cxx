@@ -530,7 +530,15 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   auto splitPoint = [&](VertexId a, VertexId b, double* p)
   {
     const double sa = std::sqrt(h[a]), sb = std::sqrt(h[b]);
-    const double s = sa / (sa + sb);
+    // Structured input (grids) makes midpoints lattice points, hence exactly coplanar and
+    // co-spherical groups that rounding turns into flat tets; a deterministic shift of the
+    // split point along the edge (a hash of the edge's ends) breaks the lattice.
+    std::uint64_t x = edgeKey(a, b) * 0x9E3779B97F4A7C15ULL;
+    x ^= x >> 29;
+    x *= 0xBF58476D1CE4E5B9ULL;
+    x ^= x >> 32;
+    const double shift = options.splitJitter * ((x >> 11) * (1.0 / 9007199254740992.0) - 0.5);
+    const double s = sa / (sa + sb) + shift;
     const double* pa = mesh.point(a);
     const double* pb = mesh.point(b);
     for (int k = 0; k < 3; ++k)

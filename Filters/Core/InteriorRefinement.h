@@ -26,6 +26,10 @@ struct RefinementOptions
   double minPointDistance = 0.7;
   // ... or when a constrained face (boundary, interface) near it is closer than this.
   double minBoundaryDistance = 0.5;
+  // The split point moves along the edge by up to +-splitJitter/2 of its length (deterministic,
+  // hashed from the edge's vertex ids), so that grid-like input does not produce lattice points
+  // (exactly coplanar groups that rounding turns into flat tets). 0: the metric midpoint.
+  double splitJitter = 0.05;
   // Bound on the number of rounds (each round splits the edges too long at its start).
   int maxRounds = 200;
 };
