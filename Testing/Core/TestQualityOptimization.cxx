@@ -270,6 +270,46 @@ RegionMesh jitteredGridCube(int k, int faceCells = 3)
   return rm;
 }
 
+// Two unit cubes sharing a face (two regions) with `count` random interior points, each in
+// the region of the tet it lands in.
+RegionMesh twoCubesWithPoints(int count)
+{
+  std::vector<char> shared;
+  RegionMesh rm;
+  EXPECT_TRUE(buildRegionMesh(tt::twoCubes(shared), rm));
+  // Points inside both cubes (x in (0,2)): each takes the region of the tet it lands in.
+  InsertionWorkspace* ws = createInsertionWorkspace();
+  std::uint64_t seed = 99;
+  auto next = [&]()
+  {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(seed >> 11) / 9007199254740992.0;
+  };
+  for (int i = 0; i < count; ++i)
+  {
+    double x = 0.05 + 1.9 * next(), y = 0.05 + 0.9 * next(), z = 0.05 + 0.9 * next();
+    TetId loc = locatePoint(rm.mesh, std::array<double, 3>{ x, y, z }.data(), 0);
+    EXPECT_GE(loc, 0);
+    if (loc < 0)
+      continue;
+    std::int32_t region = rm.region[static_cast<std::size_t>(loc)];
+    VertexId v = rm.mesh.addVertex(x, y, z);
+    InsertResult r = insertVertex(rm.mesh, v, loc, *ws);
+    rm.region.resize(static_cast<std::size_t>(rm.mesh.tetCapacity()), region);
+    if (r.status == InsertStatus::Inserted)
+    {
+      // The cavity stays inside one region: relabel the new ball.
+      for (TetId t = 0; t < rm.mesh.tetCapacity(); ++t)
+        if (!rm.mesh.isDeleted(t))
+          for (int k = 0; k < 4; ++k)
+            if (rm.mesh.vertex(t, k) == v)
+              rm.region[static_cast<std::size_t>(t)] = region;
+    }
+  }
+  destroyInsertionWorkspace(ws);
+  return rm;
+}
+
 } // namespace
 
 TEST(QualityOptimization, CubeTwelveTriangles)
@@ -315,37 +355,7 @@ TEST(QualityOptimization, TwoCubesSharingAFace)
 
 TEST(QualityOptimization, TwoCubesWithInteriorPoints)
 {
-  std::vector<char> shared;
-  RegionMesh rm;
-  ASSERT_TRUE(buildRegionMesh(tt::twoCubes(shared), rm));
-  // Points inside both cubes (x in (0,2)): each takes the region of the tet it lands in.
-  InsertionWorkspace* ws = createInsertionWorkspace();
-  std::uint64_t seed = 99;
-  auto next = [&]()
-  {
-    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
-    return static_cast<double>(seed >> 11) / 9007199254740992.0;
-  };
-  for (int i = 0; i < 60; ++i)
-  {
-    double x = 0.05 + 1.9 * next(), y = 0.05 + 0.9 * next(), z = 0.05 + 0.9 * next();
-    TetId loc = locatePoint(rm.mesh, std::array<double, 3>{ x, y, z }.data(), 0);
-    ASSERT_GE(loc, 0);
-    std::int32_t region = rm.region[static_cast<std::size_t>(loc)];
-    VertexId v = rm.mesh.addVertex(x, y, z);
-    InsertResult r = insertVertex(rm.mesh, v, loc, *ws);
-    rm.region.resize(static_cast<std::size_t>(rm.mesh.tetCapacity()), region);
-    if (r.status == InsertStatus::Inserted)
-    {
-      // The cavity stays inside one region: relabel the new ball.
-      for (TetId t = 0; t < rm.mesh.tetCapacity(); ++t)
-        if (!rm.mesh.isDeleted(t))
-          for (int k = 0; k < 4; ++k)
-            if (rm.mesh.vertex(t, k) == v)
-              rm.region[static_cast<std::size_t>(t)] = region;
-    }
-  }
-  destroyInsertionWorkspace(ws);
+  RegionMesh rm = twoCubesWithPoints(60);
   OptimizationResult r = optimizeAndCheck("two cubes + 60 interior points", rm);
   EXPECT_GT(r.smoothedVertices, 0);
 }
@@ -394,21 +404,36 @@ TEST(QualityOptimization, LargerJitteredGridTiming)
 TEST(QualityOptimization, VertexInsertionKeepsInvariants)
 {
   // Insertion is tried once the other moves stall; check every invariant with it on.
-  for (int surface = 0; surface < 2; ++surface)
+  const char* names[4] = { "icosphere 2 + insertion",
+    "jittered icosphere 2 + insertion",
+    "cube + 4^3 grid + insertion",
+    "two cubes + 60 points + insertion" };
+  for (int surface = 0; surface < 4; ++surface)
   {
     RegionMesh rm;
     if (surface == 0)
       ASSERT_TRUE(buildRegionMesh(tt::icosphere(2), rm));
-    else
+    else if (surface == 1)
+    {
+      tt::Surface s = tt::icosphere(2);
+      tt::jitter(s, 0.02, 7);
+      ASSERT_TRUE(buildRegionMesh(s, rm));
+    }
+    else if (surface == 2)
       rm = jitteredGridCube(4);
+    else
+      rm = twoCubesWithPoints(60);
     const VertexId verticesBefore = rm.mesh.vertexCount();
     OptimizationOptions options;
     options.insertion = true;
     options.passes = 10;
-    OptimizationResult r = optimizeAndCheck(
-      surface == 0 ? "icosphere 2 + insertion" : "cube + 4^3 grid + insertion", rm, options);
+    OptimizationResult r = optimizeAndCheck(names[surface], rm, options);
     std::printf("    inserted vertices %d\n", r.insertedVertices);
     EXPECT_EQ(rm.mesh.vertexCount(), verticesBefore + r.insertedVertices);
+    if (surface == 0)
+    {
+      EXPECT_GT(r.insertedVertices, 0);
+    }
   }
 }
 
