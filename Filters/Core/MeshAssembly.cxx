@@ -88,4 +88,34 @@ void extractRegionMesh(const RegionMesh& in,
   }
 }
 
+std::vector<std::int32_t> findTriangleFaces(const std::vector<std::int32_t>& tets,
+  const std::int32_t* triangles,
+  std::int32_t triangleCount)
+{
+  std::unordered_map<std::array<VertexId, 3>, std::int32_t, FaceKeyHash> index;
+  index.reserve(static_cast<std::size_t>(triangleCount));
+  for (std::int32_t i = 0; i < triangleCount; ++i)
+  {
+    std::array<VertexId, 3> key{ triangles[3 * i], triangles[3 * i + 1], triangles[3 * i + 2] };
+    std::sort(key.begin(), key.end());
+    index.emplace(key, i);
+  }
+  std::vector<std::int32_t> faces(static_cast<std::size_t>(triangleCount), -1);
+  for (std::size_t t = 0; t < tets.size() / 4; ++t)
+  {
+    for (int f = 0; f < 4; ++f)
+    {
+      std::array<VertexId, 3> key;
+      for (int k = 0; k < 3; ++k)
+        key[static_cast<std::size_t>(k)] =
+          tets[4 * t + static_cast<std::size_t>(kFaceVertices[f][k])];
+      std::sort(key.begin(), key.end());
+      auto found = index.find(key);
+      if (found != index.end() && faces[static_cast<std::size_t>(found->second)] < 0)
+        faces[static_cast<std::size_t>(found->second)] = makeFaceRef(static_cast<TetId>(t), f);
+    }
+  }
+  return faces;
+}
+
 } // namespace tetmesher

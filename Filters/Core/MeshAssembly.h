@@ -33,4 +33,10 @@ void extractRegionMesh(const RegionMesh& in,
   std::vector<std::int32_t>& tets,
   std::vector<std::int32_t>& regionIds);
 
+// For each input triangle, 4*t+f of a tet face with the same three vertices (face f opposite
+// vertex f of tet t in `tets`), or -1 if no tet has it.
+std::vector<std::int32_t> findTriangleFaces(const std::vector<std::int32_t>& tets,
+  const std::int32_t* triangles,
+  std::int32_t triangleCount);
+
 } // namespace tetmesher

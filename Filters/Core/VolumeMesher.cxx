@@ -1,0 +1,116 @@
+#include "VolumeMesher.h"
+
+#include "MeshAssembly.h"
+#include "SizeField.h"
+
+#include <chrono>
+#include <cmath>
+
+namespace tetmesher
+{
+namespace
+{
+// Maps a stage's progress in [0,1] into [begin, end] of the whole run.
+std::function<bool(double)> subProgress(const std::function<bool(double)>& progress,
+  double begin,
+  double end)
+{
+  if (!progress)
+    return {};
+  return [progress, begin, end](double p) { return progress(begin + (end - begin) * p); };
+}
+} // namespace
+
+VolumeMeshResult meshVolume(const double* points,
+  std::int32_t pointCount,
+  const std::int32_t* triangles,
+  std::int32_t triangleCount,
+  const VolumeMeshOptions& options,
+  const std::function<bool(double)>& progress)
+{
+  const auto start = std::chrono::steady_clock::now();
+  VolumeMeshResult result;
+  const bool later = options.refine || options.optimize;
+  const double boundaryShare = later ? 0.4 : 1.0;
+  const double refineEnd = options.optimize ? 0.75 : 1.0;
+
+  MesherResult boundary = meshSurface(points,
+    pointCount,
+    triangles,
+    triangleCount,
+    options.boundary,
+    subProgress(progress, 0.0, boundaryShare));
+  result.steinerPoints = boundary.steinerPoints;
+  result.regionCount = boundary.regionCount;
+  if (!boundary.ok)
+  {
+    result.error = boundary.error;
+    result.boundaryStats = std::move(boundary);
+    return result;
+  }
+  if (!later)
+  {
+    result.points = std::move(boundary.points);
+    result.tets = std::move(boundary.tets);
+    result.regionIds = std::move(boundary.regionIds);
+    result.boundaryFaceTet = std::move(boundary.boundaryFaceTet);
+    result.boundaryStats = std::move(boundary);
+    result.ok = true;
+    result.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+  }
+
+  RegionMesh mesh;
+  if (!assembleRegionMesh(boundary.points, boundary.tets, boundary.regionIds, mesh))
+  {
+    result.error = "internal error: the boundary mesh has a face shared by more than two tets";
+    return result;
+  }
+  // Size field at the input points: given, else the mean boundary edge length there.
+  std::vector<double> size = boundaryEdgeSizes(points, pointCount, triangles, triangleCount);
+  for (std::size_t i = 0; i < options.inputSizes.size() && i < size.size(); ++i)
+  {
+    if (options.inputSizes[i] > 0 && std::isfinite(options.inputSizes[i]))
+      size[i] = options.inputSizes[i];
+  }
+  if (options.refine)
+  {
+    result.refinementStats = refineInterior(mesh,
+      size,
+      options.refinement,
+      options.background,
+      subProgress(progress, boundaryShare, refineEnd));
+    if (!result.refinementStats.ok)
+    {
+      result.error = "interior point creation failed: " + result.refinementStats.error;
+      return result;
+    }
+    result.interiorPoints = result.refinementStats.insertedPoints;
+  }
+  std::vector<double> unusedPoints;
+  std::vector<std::int32_t> unusedRegions;
+  extractRegionMesh(mesh, unusedPoints, result.tetsBeforeOptimization, unusedRegions);
+  if (options.optimize)
+  {
+    // Quality in units of h only when a size field was computed by refinement.
+    const std::vector<double>* h = options.refine ? &size : nullptr;
+    result.optimizationStats =
+      optimizeMesh(mesh, options.optimization, h, subProgress(progress, refineEnd, 1.0));
+    if (!result.optimizationStats.ok)
+    {
+      result.error = "quality optimisation failed: " + result.optimizationStats.error;
+      return result;
+    }
+  }
+  extractRegionMesh(mesh, result.points, result.tets, result.regionIds);
+  if (options.refine)
+    result.vertexSize = std::move(size);
+  result.boundaryFaceTet = findTriangleFaces(result.tets, triangles, triangleCount);
+  result.boundaryStats = std::move(boundary);
+  result.ok = true;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+} // namespace tetmesher

@@ -1,0 +1,60 @@
+// The whole pipeline of the paper, as the VTK filter and the CLI run it:
+//   boundary mesh (Mesher.h: Delaunay, recovery, regions)
+//   -> size field and interior points (SizeField.h, InteriorRefinement.h; section 4.1, 4.4)
+//   -> quality optimisation (QualityOptimization.h; section 4.3, 4.5).
+// Each later stage keeps the boundary faces (they are constraints) and the regions.
+#pragma once
+
+#include "InteriorRefinement.h"
+#include "Mesher.h"
+#include "QualityOptimization.h"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace tetmesher
+{
+
+struct VolumeMeshOptions
+{
+  MesherOptions boundary;
+  bool refine = true; // off: the boundary mesh alone (the paper's figure 2)
+  RefinementOptions refinement;
+  bool optimize = true;
+  OptimizationOptions optimization;
+  // Wanted size h at each input point (raw, before refinement.size scaling); empty or
+  // entries <= 0: the mean length of the boundary edges at that point.
+  std::vector<double> inputSizes;
+  // A controlling space: h(x) anywhere; when set it overrides the interpolation inside.
+  std::function<double(const double*)> background;
+};
+
+struct VolumeMeshResult
+{
+  bool ok = false;
+  std::string error;
+  std::vector<double> points;                // first pointCount are the input points, bit-identical
+  std::vector<std::int32_t> tets;            // 4 per tet, orient3d > 0 (Shewchuk)
+  std::vector<std::int32_t> regionIds;       // per tet
+  std::vector<double> vertexSize;            // h used at each vertex (empty if never computed)
+  std::vector<std::int32_t> boundaryFaceTet; // per input triangle: 4*t+f of an equal tet face
+  std::vector<std::int32_t> tetsBeforeOptimization; // for the before/after histogram
+  int steinerPoints = 0;                            // recovery points
+  int interiorPoints = 0;                           // refinement points
+  int regionCount = 0;
+  MesherResult boundaryStats; // timings and counters of the boundary stage
+  RefinementResult refinementStats;
+  OptimizationResult optimizationStats;
+  double seconds = 0;
+};
+
+VolumeMeshResult meshVolume(const double* points,
+  std::int32_t pointCount,
+  const std::int32_t* triangles,
+  std::int32_t triangleCount,
+  const VolumeMeshOptions& options,
+  const std::function<bool(double progress)>& progress = {});
+
+} // namespace tetmesher
