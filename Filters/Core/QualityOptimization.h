@@ -1,21 +1,27 @@
 // Quality optimisation of a tetrahedral mesh (George-Hecht-Saltel 1990, sections 4.3 and 4.5;
 // after Klingner & Shewchuk 2007, "Aggressive tetrahedral mesh improvement").
 //
-// Driven by the worst elements: every tet whose quality is below a target is attacked with
-//  - edge removal: the n tets around an interior edge are replaced by the 2n-4 tets over the
-//    best triangulation of the edge's ring (Shewchuk's dynamic programming over the ring
-//    polygon, maximising the worst quality); n = 3 is the 3-2 flip;
-//  - 2-3 flips of its faces;
-//  - smoothing of its interior vertices: the paper's weighted barycentre of the ball (two
-//    variants are tried: volume-weighted centroids and the mean of the ideal positions over
-//    each ball face), then a few steps of ascent along the gradient of the worst quality in
-//    the ball.
-// A change is kept only when every new tet is positively oriented (exact orient3d) and the
-// worst quality of the changed set strictly improves in the chosen measure while the worst Q
-// and the worst dihedral angle of the set do not decrease. Hence the mesh's minimum Q and
-// minimum dihedral angle never decrease. Constrained faces (boundary and region interfaces)
-// are never flipped and their vertices never move, so the boundary and the interfaces are
-// kept bit-identical and every change stays inside one region.
+// Driven by the worst elements. Each pass first smooths the free vertices of the tets whose
+// quality is below the target, then works through a queue of those tets, worst first (new
+// bad tets are queued behind), applying the best acceptable of
+//  - edge removal of each of its edges (EdgeRemoval.h): the n tets around an interior edge
+//    become the 2n-4 tets over the best triangulation of the edge's ring (dynamic programming
+//    over the ring polygon, maximising the worst quality); n = 3 is the 3-2 flip;
+//  - multi-face removal from each of its faces (MultiFaceRemoval.h), the inverse of edge
+//    removal; one face is the 2-3 flip;
+// and, when options.insertion is set and a pass changed nothing, vertex insertion
+// (VertexInsertion.h) for one more pass. Vertex smoothing (VertexSmoothing.h): the paper's
+// weighted barycentre of the ball (volume-weighted centroids; mean of ideal apexes), then
+// ascent on the worst quality of the ball along the least-norm point of the hull of the
+// nearly-worst tets' gradients. Passes stop early when nothing changes.
+//
+// The acceptance rule (OptimizationContext.h): every new tet positively oriented (exact
+// orient3d), the worst quality of the changed set strictly improves in the chosen measure,
+// and neither the set's worst Q nor its worst dihedral angle falls below both its old value
+// and the mesh minimum at the start of the pass. Hence the mesh's minimum Q and minimum
+// dihedral angle never decrease. Constrained faces (boundary and region interfaces) are never
+// removed and their vertices never move, so the boundary and the interfaces stay
+// bit-identical, every change stays inside one region, and no vertex leaves the mesh.
 #pragma once
 
 #include "MeshAssembly.h"
@@ -40,8 +46,8 @@ struct OptimizationOptions
   QualityMeasure measure = QualityMeasure::PaperQ;
   bool smoothing = true;
   bool flips = true;
-  // Insert a vertex at the centroid of a bad tet that no flip improves (cavity grown
-  // greedily; kept only when acceptable). Adds vertices to the mesh.
+  // Vertex insertion once the other moves stall (needs flips): adds interior vertices, so
+  // the mesh gets vertices beyond vertexSize's (their h: mean of the split tet's).
   bool insertion = false;
   int maxEdgeRing = 10;   // longest edge ring that edge removal retriangulates
   int maxMultiFace = 8;   // most faces one multi-face removal takes out (1: 2-3 flips only)
