@@ -243,7 +243,24 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
         if (ctx_.mesh.isDeleted(t) || ctx_.verts(t) != tv)
           continue; // changed since it was queued
         if (!improveTet(t, created))
-          continue;
+        {
+          // No topological move: smooth its free vertices, then requeue the balls' bad tets.
+          if (!ctx_.options.smoothing)
+            continue;
+          bool moved = false;
+          created.clear();
+          for (VertexId v : tv)
+            if (!ctx_.fixed[static_cast<std::size_t>(v)] && smoothVertex(ctx_, v, star_))
+            {
+              moved = true;
+              ++res_.smoothedVertices;
+              created.insert(created.end(), star_.begin(), star_.end());
+            }
+          if (!moved)
+            continue;
+          std::sort(created.begin(), created.end());
+          created.erase(std::unique(created.begin(), created.end()), created.end());
+        }
         ++changes;
         for (TetId c : created)
           if (ctx_.evalTet(c).score < ctx_.options.qualityTarget)
