@@ -8,16 +8,80 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <map>
 #include <memory>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 #include <unordered_set>
 
 namespace tetmesher
 {
 namespace
 {
+
+struct TupleHash
+{
+  template<std::size_t N>
+  std::size_t operator()(const std::array<VertexId, N>& k) const
+  {
+    std::uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (VertexId v : k)
+      h = (h ^ static_cast<std::uint32_t>(v)) * 0x100000001b3ull;
+    return static_cast<std::size_t>(h ^ (h >> 29));
+  }
+};
+
+// The same measure, each exact test run once per (unordered) tet, face or edge: a flip search
+// prices the same entities again and again (every move rescans its pipe, every edge removal
+// prices all ring triangulations). All three tests are symmetric in their vertices.
+FlipCost memoized(const FlipCost& base)
+{
+  struct Caches
+  {
+    std::unordered_map<std::array<VertexId, 4>, int, TupleHash> tets;
+    std::unordered_map<std::array<VertexId, 3>, int, TupleHash> faces;
+    std::unordered_map<std::uint64_t, int> edges;
+  };
+  auto caches = std::make_shared<Caches>();
+  FlipCost c;
+  if (base.tet)
+    c.tet = [caches, f = base.tet](const TetVertices& t)
+    {
+      TetVertices k = t;
+      std::sort(k.begin(), k.end());
+      auto it = caches->tets.find(k);
+      if (it != caches->tets.end())
+        return it->second;
+      int value = f(t);
+      caches->tets.emplace(k, value);
+      return value;
+    };
+  if (base.face)
+    c.face = [caches, f = base.face](VertexId x, VertexId y, VertexId z)
+    {
+      auto k = sortedTriangle(x, y, z);
+      auto it = caches->faces.find(k);
+      if (it != caches->faces.end())
+        return it->second;
+      int value = f(x, y, z);
+      caches->faces.emplace(k, value);
+      return value;
+    };
+  if (base.edge)
+    c.edge = [caches, f = base.edge](VertexId u, VertexId v)
+    {
+      std::uint64_t k = edgeKey(u, v);
+      auto it = caches->edges.find(k);
+      if (it != caches->edges.end())
+        return it->second;
+      int value = f(u, v);
+      caches->edges.emplace(k, value);
+      return value;
+    };
+  return c;
+}
 
 struct WorkspaceDeleter
 {
@@ -31,6 +95,8 @@ public:
     : mesh_(mesh)
     , surface_(surface)
     , options_(options)
+    , start_(std::chrono::steady_clock::now())
+    , lastPoll_(start_)
   {
     index_.rebuild(mesh_);
     std::map<std::uint64_t, std::size_t> edgeIndex;
@@ -92,6 +158,11 @@ private:
   bool insertSteinerNear(VertexId seed, const FlipCost& cost);
   bool onInputSurface(const double* x) const;
   void markConstrained(FaceRef face);
+  // True when the time budget is spent or the progress callback asked to abort (polled a
+  // few times a second); result_.error then names the item being recovered.
+  bool interrupted();
+  // Inserts the point (true) and repairs the vertex->tet index.
+  bool insertSteiner(const double* c, TetId tet);
 
   TetMesh& mesh_;
   const SurfaceInput& surface_;
@@ -103,7 +174,55 @@ private:
   RecoveryResult result_;
   std::vector<std::vector<std::array<VertexId, 3>>> edgeTriangles_; // input triangles per edge
   std::map<std::size_t, int> steinerPerItem_; // edges by index, then triangles after them
+  std::chrono::steady_clock::time_point start_, lastPoll_;
+  const std::function<bool(double)>* progress_ = nullptr;
+  double progressFraction_ = 0;
+  std::string currentItem_; // for the budget / abort message
+  bool interrupted_ = false;
 };
+
+bool Recovery::interrupted()
+{
+  if (interrupted_)
+    return true;
+  auto now = std::chrono::steady_clock::now();
+  if (std::chrono::duration<double>(now - lastPoll_).count() < 0.05)
+    return false;
+  lastPoll_ = now;
+  double elapsed = std::chrono::duration<double>(now - start_).count();
+  if (options_.maxSeconds > 0 && elapsed > options_.maxSeconds)
+  {
+    std::ostringstream error;
+    error << "boundary recovery exceeded the time budget of " << options_.maxSeconds
+          << " s while recovering " << currentItem_;
+    result_.error = error.str();
+    interrupted_ = true;
+  }
+  else if (progress_ && *progress_ && !(*progress_)(progressFraction_))
+  {
+    result_.error = "aborted during boundary recovery (while recovering " + currentItem_ + ")";
+    interrupted_ = true;
+  }
+  return interrupted_;
+}
+
+bool Recovery::insertSteiner(const double* c, TetId tet)
+{
+  VertexId id = mesh_.addVertex(c[0], c[1], c[2]);
+  InsertResult r = insertVertex(mesh_, id, tet, *workspace_);
+  if (r.status != InsertStatus::Inserted)
+  {
+    mesh_.coords.resize(mesh_.coords.size() - 3);
+    return false;
+  }
+  result_.steinerVertices.push_back(id);
+  // A full rebuild (O(mesh), and Steiner points are few): repairing only the new point's star
+  // would be enough for correctness, but it changes which incident tet each vertex starts its
+  // star from, hence the tie-breaking order of the flip search; the corpus (gear.vtp) showed
+  // that recovery is sensitive to that order, so keep the order of the tested version.
+  index_.rebuild(mesh_);
+  return true;
+}
 
 FlipCost Recovery::edgeCost(VertexId a, VertexId b) const
 {
@@ -310,14 +429,19 @@ bool Recovery::lookahead(VertexId seed, const FlipCost& cost, std::vector<FlipCa
   return false;
 }
 
-bool Recovery::flipUntil(VertexId seed, const FlipCost& cost, const std::function<bool()>& done)
+bool Recovery::flipUntil(VertexId seed,
+  const FlipCost& exactCost,
+  const std::function<bool()>& done)
 {
+  const FlipCost cost = memoized(exactCost);
   std::vector<TetId> pipe;
   std::vector<FlipCandidate> neutral;
   for (int move = 0; move < options_.maxMovesPerItem; ++move)
   {
     if (done())
       return true;
+    if (interrupted())
+      return false;
     FlipCandidate best;
     bool bestIsFlip23 = false;
     neutral.clear();
@@ -401,8 +525,9 @@ bool Recovery::onInputSurface(const double* x) const
   return false;
 }
 
-bool Recovery::insertSteinerNear(VertexId seed, const FlipCost& cost)
+bool Recovery::insertSteinerNear(VertexId seed, const FlipCost& exactCost)
 {
+  const FlipCost cost = memoized(exactCost);
   std::vector<TetId> pipe;
   collectPipe(seed, cost, pipe);
   // Candidate positions, best first. (1) Next to the middle of an edge that cuts the item,
@@ -462,15 +587,8 @@ bool Recovery::insertSteinerNear(VertexId seed, const FlipCost& cost)
     }
     if (!geometry::pointInsideTet(c, p) || onInputSurface(c))
       continue;
-    VertexId id = mesh_.addVertex(c[0], c[1], c[2]);
-    InsertResult r = insertVertex(mesh_, id, candidate.tet, *workspace_);
-    if (r.status == InsertStatus::Inserted)
-    {
-      result_.steinerVertices.push_back(id);
-      index_.rebuild(mesh_);
+    if (insertSteiner(c, candidate.tet))
       return true;
-    }
-    mesh_.coords.resize(mesh_.coords.size() - 3);
   }
   return false;
 }
@@ -491,6 +609,21 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
   const auto& edges = surface_.edges;
   std::vector<char> recovered(triangles.size(), 0);
   std::size_t recoveredCount = 0;
+  progress_ = &progress;
+  auto edgeName = [&](std::size_t e)
+  {
+    std::ostringstream name;
+    name << "input edge (" << edges[e][0] << "," << edges[e][1] << ") of triangle "
+         << surface_.edgeFirstTriangle[e];
+    return name.str();
+  };
+  auto triangleName = [&](std::size_t i)
+  {
+    const auto& t = triangles[i];
+    std::ostringstream name;
+    name << "input triangle " << i << " (" << t[0] << "," << t[1] << "," << t[2] << ")";
+    return name.str();
+  };
   // Reports progress (and honours an abort) once per round and every 1024 items.
   auto keepGoing = [&](std::size_t item)
   {
@@ -512,8 +645,13 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
         return result_;
       VertexId a = edges[e][0], b = edges[e][1];
       auto exists = [&] { return findEdge(mesh_, index_, a, b) >= 0; };
-      if (!flipUntil(a, edgeCost(a, b), exists))
+      if (exists())
+        continue;
+      currentItem_ = edgeName(e);
+      if (!flipUntil(a, edgeCost(a, b), exists) && !interrupted_)
         flipUntil(a, edgeAndFacesCost(e), exists);
+      if (interrupted_)
+        return result_;
     }
     for (std::size_t i = 0; i < triangles.size(); ++i)
     {
@@ -528,18 +666,22 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
         edgesPresent = findEdge(mesh_, index_, t[e], t[(e + 1) % 3]) >= 0;
       if (face < 0 && edgesPresent)
       {
+        currentItem_ = triangleName(i);
         auto exists = [&]
         {
           face = findFace(mesh_, index_, t[0], t[1], t[2]);
           return face >= 0;
         };
         flipUntil(t[0], faceCost(t), exists);
+        if (interrupted_)
+          return result_;
       }
       if (face >= 0)
       {
         markConstrained(face);
         recovered[i] = 1;
         ++recoveredCount;
+        progressFraction_ = static_cast<double>(recoveredCount) / triangles.size();
       }
     }
     if (recoveredCount == triangles.size())
@@ -554,6 +696,9 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
     auto steinerFor =
       [&](std::size_t key, const std::string& name, VertexId seed, const FlipCost& cost)
     {
+      currentItem_ = name;
+      if (interrupted())
+        return false;
       int& count = steinerPerItem_[key];
       if (count >= options_.maxSteinerPerItem)
         result_.error = "could not recover " + name + " with " + std::to_string(count) +
@@ -576,12 +721,10 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
       VertexId a = edges[e][0], b = edges[e][1];
       if (findEdge(mesh_, index_, a, b) >= 0)
         continue;
-      std::ostringstream name;
-      name << "input edge (" << a << "," << b << ") of triangle " << surface_.edgeFirstTriangle[e];
       // Alternate between placing the point against the edge alone and against the edge and
       // its triangles (which reaches tets straddling a planar part of the surface).
       bool alone = steinerPerItem_[e] % 2 == 0;
-      if (!steinerFor(e, name.str(), a, alone ? edgeCost(a, b) : edgeAndFacesCost(e)))
+      if (!steinerFor(e, edgeName(e), a, alone ? edgeCost(a, b) : edgeAndFacesCost(e)))
         return result_;
     }
     for (std::size_t i = 0; i < triangles.size() && inserted == 0; ++i)
@@ -589,9 +732,7 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
       const auto& t = triangles[i];
       if (recovered[i] || findFace(mesh_, index_, t[0], t[1], t[2]) >= 0)
         continue;
-      std::ostringstream name;
-      name << "input triangle " << i << " (" << t[0] << "," << t[1] << "," << t[2] << ")";
-      if (!steinerFor(edges.size() + i, name.str(), t[0], faceCost(t)))
+      if (!steinerFor(edges.size() + i, triangleName(i), t[0], faceCost(t)))
         return result_;
     }
   }

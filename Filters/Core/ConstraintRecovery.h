@@ -36,6 +36,9 @@ struct RecoveryOptions
   // An item still missing after this many Steiner points near it is reported as a failure:
   // on valid input a few suffice, so more means intersecting or nearly touching triangles.
   int maxSteinerPerItem = 64;
+  // Wall-clock budget in seconds (0: none); exceeding it ends recovery with an error naming
+  // the item being worked on.
+  double maxSeconds = 0;
 };
 
 struct RecoveryResult

@@ -92,6 +92,7 @@ MesherResult meshSurface(const double* points,
   recoveryOptions.maxSteinerPoints =
     options.maxSteinerPoints >= 0 ? options.maxSteinerPoints : 100 + 4 * triangleCount;
   recoveryOptions.maxMovesPerItem = options.maxMovesPerItem;
+  recoveryOptions.maxSeconds = options.maxSeconds;
   RecoveryResult recovery = recoverBoundary(
     mesh, surface, recoveryOptions, [&](double f) { return report(0.2 + 0.7 * f); });
   result.recoverySeconds = secondsSince(stageStart);

@@ -33,6 +33,9 @@ struct MesherOptions
   // Run SurfaceDiagnosis first (self-intersections etc.) and refuse defective input with its
   // message. Without it, such input fails later in recovery, still naming an item.
   bool validateInput = true;
+  // Wall-clock budget of boundary recovery in seconds (0: none). When exceeded, meshSurface
+  // returns ok = false with an error naming the item being recovered.
+  double maxSeconds = 0;
 };
 
 struct MesherResult

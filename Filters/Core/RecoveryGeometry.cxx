@@ -17,6 +17,10 @@ using predicates::orient2d;
 // to prove a zero.
 int orient3d(const double* a, const double* b, const double* c, const double* d)
 {
+  // A repeated point (callers pass mesh coordinates, so equal vertices share a pointer) is an
+  // exact zero that the floating-point filter cannot certify.
+  if (a == b || a == c || a == d || b == c || b == d || c == d)
+    return 0;
   for (int k = 0; k < 3; ++k)
   {
     if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k])
@@ -130,6 +134,8 @@ bool simplexMeetsTetInterior(const double* const* points, int count, const doubl
           bool degenerate = true;
           for (int m = 0; m < n && separates; ++m)
           {
+            if (m == i || m == j || m == k)
+              continue; // on the plane by construction
             int s = orient3d(all[i], all[j], all[k], all[m]);
             if (s == 0)
               continue;
