@@ -5,13 +5,18 @@
 
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkDataSet.h"
+#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkTetMesher.h"
 #include "vtkUnstructuredGrid.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -27,14 +32,25 @@ const char* const kMeshUsage = R"(usage: tetmesher mesh SURFACE -o OUT.vtu [opti
 
 Tetrahedralizes the closed triangulated surface SURFACE. The boundary of the result is
 exactly the input triangles (same points, same coordinates); points 0..n-1 of OUT are the
-input points. Today this is the boundary mesh (George-Hecht-Saltel 1990, figure 2):
-interior points for a size field and quality optimisation are not implemented yet.
+input points. Interior points follow the size field h (default: the mean length of the
+boundary edges at each surface point, interpolated inside), then the worst elements are
+improved by flips, edge removal and smoothing.
 
 SURFACE: .stl .obj .ply .vtp .vtk .off          OUT: .vtu or .vtk
 
 options:
   -o, --output FILE     where to write the mesh (required)
-  --boundary-only       the boundary mesh alone (today's only mode)
+  --boundary-only       the boundary mesh alone: no interior points, no optimisation
+  --size H              constant wanted edge length H
+  --size-array NAME     wanted edge length from the surface's point array NAME
+  --background FILE     controlling space: any VTK dataset with a point array of sizes
+  --background-array N  that array's name (default h)
+  --size-scale S        multiply every size by S
+  --min-size A, --max-size B   clamp the size field
+  --gradation G         largest size ratio between neighbours one h apart (default 1.5)
+  --no-optimize         skip quality optimisation
+  --passes N            optimisation passes (default 3)
+  --quality-target Q    optimise tets below this quality (default 0.3)
   --stats               print the quality summary of the result
   --holes               enclosed shells are holes instead of regions of their own
   --max-steiner N       budget of recovery Steiner points (default 100 + 4 per triangle)
@@ -71,8 +87,26 @@ double Field(vtkUnstructuredGrid* mesh, const char* name)
 int RunMesh(int argc, char* argv[])
 {
   std::string input, output;
-  bool stats = false, holes = false, check = true, quiet = false;
-  int maxSteiner = -1;
+  bool stats = false, holes = false, check = true, quiet = false, boundaryOnly = false,
+       optimize = true;
+  int maxSteiner = -1, passes = 3;
+  double size = 0, sizeScale = 1, minSize = 0, maxSize = 0, gradation = 1.5, qualityTarget = 0.3;
+  std::string sizeArray, background, backgroundArray = "h";
+  // Parses the number after option argv[i]; false (and a message) when it is not one.
+  auto number = [&](int& i, double low, double& value)
+  {
+    char* end = nullptr;
+    const char* text = argv[i + 1];
+    value = std::strtod(text, &end);
+    if (*end != '\0' || end == text || !(value >= low) || !std::isfinite(value))
+    {
+      std::fprintf(
+        stderr, "tetmesher mesh: %s wants a number >= %g, not '%s'\n", argv[i], low, text);
+      return false;
+    }
+    ++i;
+    return true;
+  };
   for (int i = 0; i < argc; ++i)
   {
     std::string arg = argv[i];
@@ -84,7 +118,37 @@ int RunMesh(int argc, char* argv[])
     if ((arg == "-o" || arg == "--output") && i + 1 < argc)
       output = argv[++i];
     else if (arg == "--boundary-only")
-      continue;
+      boundaryOnly = true;
+    else if (arg == "--no-optimize")
+      optimize = false;
+    else if (arg == "--size-array" && i + 1 < argc)
+      sizeArray = argv[++i];
+    else if (arg == "--background" && i + 1 < argc)
+      background = argv[++i];
+    else if (arg == "--background-array" && i + 1 < argc)
+      backgroundArray = argv[++i];
+    else if (i + 1 < argc &&
+      (arg == "--size" || arg == "--size-scale" || arg == "--min-size" || arg == "--max-size" ||
+        arg == "--gradation" || arg == "--quality-target" || arg == "--passes"))
+    {
+      double value = 0;
+      if (!number(i, arg == "--size" || arg == "--size-scale" ? 1e-300 : 0.0, value))
+        return 2;
+      if (arg == "--size")
+        size = value;
+      else if (arg == "--size-scale")
+        sizeScale = value;
+      else if (arg == "--min-size")
+        minSize = value;
+      else if (arg == "--max-size")
+        maxSize = value;
+      else if (arg == "--gradation")
+        gradation = value;
+      else if (arg == "--quality-target")
+        qualityTarget = std::min(value, 1.0);
+      else
+        passes = static_cast<int>(std::min(value, 100.0));
+    }
     else if (arg == "--stats")
       stats = true;
     else if (arg == "--holes")
@@ -140,7 +204,34 @@ int RunMesh(int argc, char* argv[])
   {
     vtkSmartPointer<vtkPolyData> surface = ReadSurface(input);
     vtkNew<vtkTetMesher> mesher;
+    if (size > 0)
+    {
+      // A constant size is a size array like any other.
+      vtkNew<vtkDoubleArray> constant;
+      constant->SetName("tetmesher_constant_size");
+      constant->SetNumberOfTuples(surface->GetNumberOfPoints());
+      constant->Fill(size);
+      surface->GetPointData()->AddArray(constant);
+      sizeArray = "tetmesher_constant_size";
+    }
     mesher->SetInputData(surface);
+    mesher->SetRefine(!boundaryOnly);
+    mesher->SetOptimize(optimize && !boundaryOnly);
+    mesher->SetSizeScale(sizeScale);
+    mesher->SetMinSize(minSize);
+    mesher->SetMaxSize(maxSize);
+    mesher->SetGradation(gradation);
+    mesher->SetOptimizationPasses(passes);
+    mesher->SetQualityTarget(qualityTarget);
+    if (!sizeArray.empty())
+      mesher->SetSizeArrayName(sizeArray.c_str());
+    vtkSmartPointer<vtkDataSet> space;
+    if (!background.empty())
+    {
+      space = ReadVolumeMesh(background);
+      mesher->SetInputData(1, space);
+      mesher->SetControllingSpaceArrayName(backgroundArray.c_str());
+    }
     mesher->SetEnclosedShellsAreHoles(holes);
     mesher->SetMaximumSteinerPoints(maxSteiner);
     mesher->SetCheckInput(check);
@@ -158,12 +249,13 @@ int RunMesh(int argc, char* argv[])
     }
     vtkUnstructuredGrid* mesh = mesher->GetOutput();
     WriteVolumeMesh(mesh, output);
-    std::printf("%s -> %s: %lld tetrahedra, %lld points (%d Steiner), %d region%s, Q min %.3f "
-                "mean %.3f, %.3f s\n",
+    std::printf("%s -> %s: %lld tetrahedra, %lld points (%d interior, %d Steiner), %d region%s, "
+                "Q min %.3f mean %.3f, %.3f s\n",
       input.c_str(),
       output.c_str(),
       static_cast<long long>(mesh->GetNumberOfCells()),
       static_cast<long long>(mesh->GetNumberOfPoints()),
+      static_cast<int>(Field(mesh, "InteriorPointCount")),
       static_cast<int>(Field(mesh, "SteinerPointCount")),
       static_cast<int>(Field(mesh, "RegionCount")),
       Field(mesh, "RegionCount") == 1 ? "" : "s",

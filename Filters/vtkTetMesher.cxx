@@ -1,15 +1,18 @@
 #include "vtkTetMesher.h"
 
-#include "Mesher.h"
 #include "SurfaceDiagnosis.h"
 #include "TetQualityArrays.h"
+#include "VolumeMesher.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCellData.h"
 #include "vtkCellType.h"
+#include "vtkDataArray.h"
+#include "vtkDataSet.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkGenericCell.h"
 #include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
@@ -17,6 +20,7 @@
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolygon.h"
@@ -27,6 +31,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <sstream>
@@ -149,6 +154,61 @@ void FillDefects(const tetmesher::SurfaceDiagnosis& diagnosis,
   defects->GetFieldData()->AddArray(summary);
 }
 
+// A controlling space: h anywhere from a dataset's point array, interpolated in its cells;
+// outside them, the value at the nearest point.
+class ControllingSpace
+{
+public:
+  std::string Initialize(vtkDataSet* data, const std::string& arrayName)
+  {
+    if (!data || data->GetNumberOfPoints() == 0)
+      return "the dataset on input port 1 is empty";
+    this->Sizes = data->GetPointData()->GetArray(arrayName.c_str());
+    if (!this->Sizes)
+      return "it has no point array '" + arrayName + "' (set ControllingSpaceArrayName)";
+    for (vtkIdType p = 0; p < data->GetNumberOfPoints(); ++p)
+    {
+      const double h = this->Sizes->GetComponent(p, 0);
+      if (!(h > 0) || !std::isfinite(h))
+      {
+        std::ostringstream message;
+        message << "array '" << arrayName << "' has the invalid size " << h << " at point " << p;
+        return message.str();
+      }
+    }
+    this->Data = data;
+    this->Weights.resize(static_cast<std::size_t>(std::max(data->GetMaxCellSize(), 1)));
+    return "";
+  }
+
+  double SizeAt(const double* x)
+  {
+    double point[3] = { x[0], x[1], x[2] };
+    double pcoords[3];
+    int subId = 0;
+    const vtkIdType cell = this->Data->FindCell(
+      point, nullptr, this->Cell, -1, 1e-12, subId, pcoords, this->Weights.data());
+    if (cell >= 0)
+    {
+      this->Data->GetCellPoints(cell, this->Ids);
+      double h = 0;
+      for (vtkIdType i = 0; i < this->Ids->GetNumberOfIds(); ++i)
+        h += this->Weights[static_cast<std::size_t>(i)] *
+          this->Sizes->GetComponent(this->Ids->GetId(i), 0);
+      if (h > 0)
+        return h;
+    }
+    return this->Sizes->GetComponent(this->Data->FindPoint(point), 0);
+  }
+
+private:
+  vtkDataSet* Data = nullptr;
+  vtkDataArray* Sizes = nullptr;
+  vtkNew<vtkGenericCell> Cell;
+  vtkNew<vtkIdList> Ids;
+  std::vector<double> Weights;
+};
+
 void AddScalar(vtkFieldData* fieldData, const char* name, double value)
 {
   vtkNew<vtkDoubleArray> array;
@@ -161,10 +221,16 @@ void AddScalar(vtkFieldData* fieldData, const char* name, double value)
 
 vtkTetMesher::vtkTetMesher()
 {
+  this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(3);
+  this->SetControllingSpaceArrayName("h");
 }
 
-vtkTetMesher::~vtkTetMesher() = default;
+vtkTetMesher::~vtkTetMesher()
+{
+  this->SetSizeArrayName(nullptr);
+  this->SetControllingSpaceArrayName(nullptr);
+}
 
 void vtkTetMesher::PrintSelf(ostream& os, vtkIndent indent)
 {
@@ -175,6 +241,20 @@ void vtkTetMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CheckInput: " << this->CheckInput << "\n";
   os << indent << "TriangulatePolygons: " << this->TriangulatePolygons << "\n";
   os << indent << "NumberOfBins: " << this->NumberOfBins << "\n";
+  os << indent << "Refine: " << this->Refine << "\n";
+  os << indent << "SizeArrayName: " << (this->SizeArrayName ? this->SizeArrayName : "(none)")
+     << "\n";
+  os << indent << "ControllingSpaceArrayName: "
+     << (this->ControllingSpaceArrayName ? this->ControllingSpaceArrayName : "(none)") << "\n";
+  os << indent << "SizeScale: " << this->SizeScale << "\n";
+  os << indent << "MinSize: " << this->MinSize << "\n";
+  os << indent << "MaxSize: " << this->MaxSize << "\n";
+  os << indent << "Gradation: " << this->Gradation << "\n";
+  os << indent << "InterpolationPower: " << this->InterpolationPower << "\n";
+  os << indent << "Optimize: " << this->Optimize << "\n";
+  os << indent << "OptimizationPasses: " << this->OptimizationPasses << "\n";
+  os << indent << "QualityTarget: " << this->QualityTarget << "\n";
+  os << indent << "QualityMeasure: " << this->QualityMeasure << "\n";
 }
 
 vtkTable* vtkTetMesher::GetHistogramOutput()
@@ -187,8 +267,14 @@ vtkPolyData* vtkTetMesher::GetDefectsOutput()
   return vtkPolyData::SafeDownCast(this->GetOutputDataObject(2));
 }
 
-int vtkTetMesher::FillInputPortInformation(int, vtkInformation* info)
+int vtkTetMesher::FillInputPortInformation(int port, vtkInformation* info)
 {
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+    return 1;
+  }
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
   return 1;
 }
@@ -326,12 +412,62 @@ int vtkTetMesher::RequestData(vtkInformation*,
   }
   this->UpdateProgress(0.05);
 
+  // --- Size field sources ---------------------------------------------------------------
+  tetmesher::VolumeMeshOptions options;
+  if (this->SizeArrayName && *this->SizeArrayName && this->Refine)
+  {
+    vtkDataArray* sizes = input->GetPointData()->GetArray(this->SizeArrayName);
+    if (!sizes)
+    {
+      return fail(std::string("SizeArrayName names point array '") + this->SizeArrayName +
+        "', which the input surface does not have");
+    }
+    options.inputSizes.resize(static_cast<std::size_t>(pointCount));
+    for (vtkIdType p = 0; p < pointCount; ++p)
+    {
+      const double h = sizes->GetComponent(p, 0);
+      if (!(h > 0) || !std::isfinite(h))
+      {
+        std::ostringstream message;
+        message << "size array '" << this->SizeArrayName << "' has the invalid value " << h
+                << " at point " << p << " (sizes must be finite and > 0)";
+        return fail(message.str());
+      }
+      options.inputSizes[static_cast<std::size_t>(p)] = h;
+    }
+  }
+  ControllingSpace space;
+  if (this->Refine && this->GetNumberOfInputConnections(1) > 0)
+  {
+    std::string error = space.Initialize(vtkDataSet::GetData(inputVector[1]),
+      this->ControllingSpaceArrayName ? this->ControllingSpaceArrayName : "");
+    if (!error.empty())
+    {
+      return fail("controlling space: " + error);
+    }
+    if (options.inputSizes.empty())
+    {
+      options.background = [&space](const double* x) { return space.SizeAt(x); };
+    }
+  }
+
   // --- Mesh ------------------------------------------------------------------------------
-  tetmesher::MesherOptions options;
-  options.enclosedShellsAreHoles = this->EnclosedShellsAreHoles;
-  options.maxSteinerPoints = this->MaximumSteinerPoints;
-  options.removeSteinerPoints = this->RemoveSteinerPoints;
-  tetmesher::MesherResult result = tetmesher::meshSurface(coords.data(),
+  options.boundary.enclosedShellsAreHoles = this->EnclosedShellsAreHoles;
+  options.boundary.maxSteinerPoints = this->MaximumSteinerPoints;
+  options.boundary.removeSteinerPoints = this->RemoveSteinerPoints;
+  options.refine = this->Refine;
+  options.refinement.size.scale = this->SizeScale;
+  options.refinement.size.minSize = this->MinSize;
+  options.refinement.size.maxSize = this->MaxSize;
+  options.refinement.size.gradation = this->Gradation;
+  options.refinement.size.interpolationPower = this->InterpolationPower;
+  options.optimize = this->Optimize && this->OptimizationPasses > 0;
+  options.optimization.passes = this->OptimizationPasses;
+  options.optimization.qualityTarget = this->QualityTarget;
+  options.optimization.measure = this->QualityMeasure == MIN_DIHEDRAL
+    ? tetmesher::QualityMeasure::MinDihedral
+    : tetmesher::QualityMeasure::PaperQ;
+  tetmesher::VolumeMeshResult result = tetmesher::meshVolume(coords.data(),
     static_cast<std::int32_t>(pointCount),
     triangles.data(),
     triangleCount,
@@ -435,10 +571,51 @@ int vtkTetMesher::RequestData(vtkInformation*,
   vtkFieldData* fieldData = output->GetFieldData();
   tetmesher::vtkglue::AttachQualitySummary(quality.Summary, fieldData);
   AddScalar(fieldData, "SteinerPointCount", result.steinerPoints);
+  AddScalar(fieldData, "InteriorPointCount", result.interiorPoints);
   AddScalar(fieldData, "RegionCount", result.regionCount);
   AddScalar(fieldData, "TriangulatedPolygonCount", static_cast<double>(triangulatedPolygons));
-  AddScalar(fieldData, "MeshingSeconds", result.totalSeconds);
+  AddScalar(fieldData, "MeshingSeconds", result.seconds);
+  if (!result.vertexSize.empty())
+  {
+    vtkNew<vtkDoubleArray> h;
+    h->SetName("h");
+    h->SetNumberOfTuples(outPointCount);
+    for (vtkIdType p = 0; p < outPointCount; ++p)
+    {
+      h->SetValue(p, result.vertexSize[static_cast<std::size_t>(p)]);
+    }
+    output->GetPointData()->AddArray(h);
+  }
   tetmesher::vtkglue::FillHistogramTable(quality.Histogram, histogram);
+  // The paper's figure 6 shows the histogram before and after optimisation.
+  {
+    std::vector<tetmesher::TetShape> before;
+    before.reserve(result.tetsBeforeOptimization.size() / 4);
+    for (std::size_t t = 0; t + 3 < result.tetsBeforeOptimization.size(); t += 4)
+    {
+      const double* p[4];
+      for (int i = 0; i < 4; ++i)
+      {
+        p[i] = &result.points[3 *
+          static_cast<std::size_t>(
+            result.tetsBeforeOptimization[t + static_cast<std::size_t>(kVtkFromCore[i])])];
+      }
+      before.push_back(tetmesher::measureTet(p[0], p[1], p[2], p[3]));
+    }
+    if (!before.empty())
+    {
+      std::vector<std::int64_t> bins = tetmesher::qualityHistogram(before, this->NumberOfBins);
+      vtkNew<vtkIdTypeArray> counts;
+      counts->SetName("CountBeforeOptimization");
+      for (std::int64_t n : bins)
+      {
+        counts->InsertNextValue(static_cast<vtkIdType>(n));
+      }
+      histogram->AddColumn(counts);
+      AddScalar(
+        fieldData, "QualityMinimumBeforeOptimization", tetmesher::summarizeQuality(before).minimum);
+    }
+  }
   tetmesher::vtkglue::AttachQualitySummary(quality.Summary, histogram->GetFieldData());
   this->UpdateProgress(1.0);
   return 1;

@@ -18,11 +18,18 @@
  * angles, `RegionId`, and `InputFaceIds` (4 components: for face i of the tet, the face
  * opposite its point i, the input cell id of the triangle it lies on, or -1). Field data:
  * the quality summary and `SteinerPointCount`, `RegionCount`.
- * Output 1: the histogram of Q as a vtkTable (as vtkTetQuality).
+ * Output 1: the histogram of Q as a vtkTable (as vtkTetQuality), with a column
+ * `CountBeforeOptimization`.
  * Output 2: the input defects found by the check, to look at (see GetDefectsOutput).
  *
- * Today the output is the boundary mesh (the paper's figure 2): interior point creation
- * (size field) and quality optimisation are not implemented yet.
+ * Then, unless turned off: interior points where edges are too long for the size field h
+ * (the paper's section 4.4), and quality optimisation by flips, edge removal and smoothing
+ * (sections 4.3, 4.5). h comes from, first that applies: the point array SizeArrayName of
+ * the input; the controlling space on input port 1 (any vtkDataSet with a point array named
+ * ControllingSpaceArrayName, interpolated in its cells); the mean length of the boundary
+ * edges at each input point. SizeScale multiplies h, MinSize/MaxSize clamp it, Gradation
+ * bounds its growth, and inside a tet h = (sum b_i h_i^p)^(1/p) with p = InterpolationPower.
+ * The point array `h` of the output is the size used.
  */
 #ifndef vtkTetMesher_h
 #define vtkTetMesher_h
@@ -32,6 +39,7 @@
 
 #include <string> // for LastError
 
+class vtkAlgorithmOutput;
 class vtkPolyData;
 class vtkTable;
 
@@ -50,6 +58,105 @@ public:
   vtkSetMacro(EnclosedShellsAreHoles, bool);
   vtkGetMacro(EnclosedShellsAreHoles, bool);
   vtkBooleanMacro(EnclosedShellsAreHoles, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Create interior points for the size field (default on). Off gives the boundary mesh
+   * alone (the paper's figure 2).
+   */
+  vtkSetMacro(Refine, bool);
+  vtkGetMacro(Refine, bool);
+  vtkBooleanMacro(Refine, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Name of a point array of the input surface with the wanted edge length h at each point.
+   * Empty (default): the controlling space if connected, else the boundary edge lengths.
+   */
+  vtkSetStringMacro(SizeArrayName);
+  vtkGetStringMacro(SizeArrayName);
+  ///@}
+
+  ///@{
+  /**
+   * Name of the size array of the controlling space (input port 1). Default "h".
+   */
+  vtkSetStringMacro(ControllingSpaceArrayName);
+  vtkGetStringMacro(ControllingSpaceArrayName);
+  ///@}
+
+  /**
+   * Connect a controlling space: any vtkDataSet carrying a point array of sizes (a
+   * background mesh, an image, ...), interpolated in its cells. Optional.
+   */
+  void SetControllingSpaceConnection(vtkAlgorithmOutput* output)
+  {
+    this->SetInputConnection(1, output);
+  }
+
+  ///@{
+  /**
+   * Multiplies every size (default 1). MinSize / MaxSize clamp h (0: no bound).
+   */
+  vtkSetClampMacro(SizeScale, double, 1e-6, 1e6);
+  vtkGetMacro(SizeScale, double);
+  vtkSetClampMacro(MinSize, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MinSize, double);
+  vtkSetClampMacro(MaxSize, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MaxSize, double);
+  ///@}
+
+  ///@{
+  /**
+   * Largest ratio of the sizes of neighbours one h apart (like Gmsh's and MMG's hgrad);
+   * default 1.5; 1 or less: no limit.
+   */
+  vtkSetClampMacro(Gradation, double, 0.0, 100.0);
+  vtkGetMacro(Gradation, double);
+  ///@}
+
+  ///@{
+  /**
+   * The exponent p of the paper's interpolation h = (sum b_i h_i^p)^(1/p). Default 1.
+   */
+  vtkSetClampMacro(InterpolationPower, double, -10.0, 10.0);
+  vtkGetMacro(InterpolationPower, double);
+  ///@}
+
+  ///@{
+  /**
+   * Improve the worst elements by flips, edge removal and vertex smoothing (default on).
+   * Boundary faces never change.
+   */
+  vtkSetMacro(Optimize, bool);
+  vtkGetMacro(Optimize, bool);
+  vtkBooleanMacro(Optimize, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Rounds of optimisation (default 3), and the quality below which tets are worked on
+   * (default 0.3).
+   */
+  vtkSetClampMacro(OptimizationPasses, int, 0, 100);
+  vtkGetMacro(OptimizationPasses, int);
+  vtkSetClampMacro(QualityTarget, double, 0.0, 1.0);
+  vtkGetMacro(QualityTarget, double);
+  ///@}
+
+  enum QualityMeasures
+  {
+    PAPER_Q = 0,     // 2 sqrt(6) r_in / l_max
+    MIN_DIHEDRAL = 1 // the smallest dihedral angle
+  };
+  ///@{
+  /**
+   * What the optimisation maximises: the paper's Q (default) or the smallest dihedral angle.
+   */
+  vtkSetClampMacro(QualityMeasure, int, PAPER_Q, MIN_DIHEDRAL);
+  vtkGetMacro(QualityMeasure, int);
   ///@}
 
   ///@{
@@ -118,11 +225,23 @@ protected:
   vtkTetMesher();
   ~vtkTetMesher() override;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  int FillInputPortInformation(int port, vtkInformation* info) override;
   bool EnclosedShellsAreHoles = false;
+  bool Refine = true;
+  char* SizeArrayName = nullptr;
+  char* ControllingSpaceArrayName = nullptr;
+  double SizeScale = 1.0;
+  double MinSize = 0.0;
+  double MaxSize = 0.0;
+  double Gradation = 1.5;
+  double InterpolationPower = 1.0;
+  bool Optimize = true;
+  int OptimizationPasses = 3;
+  double QualityTarget = 0.3;
+  int QualityMeasure = PAPER_Q;
   int MaximumSteinerPoints = -1;
   bool RemoveSteinerPoints = true;
   bool CheckInput = true;
