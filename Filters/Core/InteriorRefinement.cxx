@@ -537,8 +537,11 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     x ^= x >> 29;
     x *= 0xBF58476D1CE4E5B9ULL;
     x ^= x >> 32;
-    const double shift = options.splitJitter * ((x >> 11) * (1.0 / 9007199254740992.0) - 0.5);
-    const double s = sa / (sa + sb) + shift;
+    const double s0 = sa / (sa + sb);
+    // Scaled down near the ends, so that the point stays strictly inside the edge.
+    const double shift = std::clamp(options.splitJitter, 0.0, 0.9) * 2 * std::min(s0, 1 - s0) *
+      ((x >> 11) * (1.0 / 9007199254740992.0) - 0.5);
+    const double s = s0 + shift;
     const double* pa = mesh.point(a);
     const double* pb = mesh.point(b);
     for (int k = 0; k < 3; ++k)

@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <map>
 #include <set>
 #include <unordered_set>
@@ -667,8 +668,14 @@ TEST(InteriorRefinement, SpeedUnitCubeH003)
   s.surface = tt::cube(33);
   ASSERT_TRUE(prepare(s));
   std::vector<double> h(static_cast<std::size_t>(s.surface.pointCount()), 1.0 / 33);
+  const std::clock_t cpu0 = std::clock();
   RefinementResult r = refineInterior(s.mesh, h, RefinementOptions{});
+  const double cpu = double(std::clock() - cpu0) / CLOCKS_PER_SEC;
   ASSERT_TRUE(r.ok) << r.error;
+  std::printf("[cube h=1/33] refinement: %.3f s wall, %.3f s CPU (%.0f tets per CPU second)\n",
+    r.seconds,
+    cpu,
+    s.mesh.mesh.liveTetCount() / std::max(cpu, 1e-9));
   const EdgeStats e = edgeStats(s.mesh, h);
   const double fcc = std::sqrt(2.0) * 33 * 33 * 33 - s.surface.pointCount() / 2.0;
   report("cube h=1/33", s, r, e, kDensity * fcc);
