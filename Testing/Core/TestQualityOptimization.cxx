@@ -452,6 +452,7 @@ TEST(QualityOptimization, SizeScaled)
   std::vector<double> h(static_cast<std::size_t>(rm.mesh.vertexCount()));
   for (VertexId v = 0; v < rm.mesh.vertexCount(); ++v)
     h[static_cast<std::size_t>(v)] = 0.1 + 0.2 * rm.mesh.point(v)[0];
+  const std::vector<double> hBefore = h;
   Snapshot before = snapshot(rm);
   OptimizationResult r = optimizeMesh(rm, {}, &h);
   report("cube + 5^3 grid, size-scaled", r);
@@ -459,6 +460,36 @@ TEST(QualityOptimization, SizeScaled)
   EXPECT_EQ(check(rm, before), "");
   EXPECT_GE(r.minQualityAfter, r.minQualityBefore);
   EXPECT_GE(r.minDihedralAfter, r.minDihedralBefore);
+  EXPECT_EQ(h, hBefore); // the caller's sizes untouched
+
+  // With insertion the inserted vertices get sizes internally; the caller's h is unchanged.
+  RegionMesh sphere;
+  ASSERT_TRUE(buildRegionMesh(tt::icosphere(2), sphere));
+  std::vector<double> hs(static_cast<std::size_t>(sphere.mesh.vertexCount()), 0.3);
+  const std::vector<double> hsBefore = hs;
+  OptimizationOptions options;
+  options.insertion = true;
+  options.passes = 6;
+  before = snapshot(sphere);
+  r = optimizeMesh(sphere, options, &hs);
+  report("icosphere 2, size-scaled + insertion", r);
+  EXPECT_TRUE(r.ok);
+  EXPECT_EQ(check(sphere, before), "");
+  EXPECT_GT(r.insertedVertices, 0);
+  EXPECT_EQ(hs, hsBefore);
+  EXPECT_GE(r.minQualityAfter, r.minQualityBefore);
+  EXPECT_GE(r.minDihedralAfter, r.minDihedralBefore);
+}
+
+TEST(QualityOptimization, VertexSizeTooShort)
+{
+  RegionMesh rm = jitteredGridCube(3);
+  std::vector<double> h(3, 0.1);
+  const std::vector<std::int32_t> tetsBefore = rm.mesh.tets;
+  OptimizationResult r = optimizeMesh(rm, {}, &h);
+  EXPECT_FALSE(r.ok);
+  EXPECT_FALSE(r.error.empty());
+  EXPECT_EQ(rm.mesh.tets, tetsBefore);
 }
 
 TEST(QualityOptimization, Deterministic)
