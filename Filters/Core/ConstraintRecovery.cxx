@@ -161,6 +161,38 @@ private:
   // True when the time budget is spent or the progress callback asked to abort (polled a
   // few times a second); result_.error then names the item being recovered.
   bool interrupted();
+  // replaceTets, stamping the vertices of the new tets as changed.
+  void replace(const std::vector<TetId>& oldTets,
+    const std::vector<TetVertices>& newTets,
+    std::vector<TetId>* created = nullptr);
+  void touch(VertexId v)
+  {
+    if (static_cast<std::size_t>(v) >= vertexStamp_.size())
+      vertexStamp_.resize(2 * static_cast<std::size_t>(v) + 16, 0);
+    vertexStamp_[v] = ++clock_;
+  }
+  // A failed flip search remembers the vertices of its pipe and the clock: while no tet
+  // incident to one of them has changed, the search would see the same tets and fail again.
+  struct Failure
+  {
+    std::uint64_t clock = 0;
+    std::vector<VertexId> vertices;
+  };
+  void recordFailure(Failure& failure, VertexId seed, const FlipCost& cost);
+  bool unchangedSince(const Failure& failure) const;
+  // flip23Candidate / edgeRemovalCandidate for the cost of the current flip search, reused
+  // while the tets they examine are the same (ids and vertices; flags do not change during a
+  // search), so the answer is the same. Cleared per flip search.
+  struct CachedCandidate
+  {
+    std::uint64_t clock = 0;
+    bool ok = false;
+    FlipCandidate candidate;
+    std::vector<TetId> shell; // edge removal: the shell and ring it was computed for
+    std::vector<VertexId> ring;
+  };
+  bool cachedFlip23(TetId t, int f, const FlipCost& cost, FlipCandidate& out);
+  bool cachedEdgeRemoval(TetId t, VertexId p, VertexId q, const FlipCost& cost, FlipCandidate& out);
   // Inserts the point (true) and repairs the vertex->tet index.
   bool insertSteiner(const double* c, TetId tet);
 
@@ -179,7 +211,96 @@ private:
   double progressFraction_ = 0;
   std::string currentItem_; // for the budget / abort message
   bool interrupted_ = false;
+  std::vector<std::uint64_t> vertexStamp_;
+  std::uint64_t clock_ = 0;
+  std::vector<Failure> failures_; // edges by index, then triangles after them
+  std::unordered_map<FaceRef, CachedCandidate> flip23Cache_;
+  std::vector<TetId> shellScratch_;
+  std::vector<VertexId> ringScratch_;
+  std::unordered_map<std::array<VertexId, 3>, CachedCandidate, TupleHash> edgeRemovalCache_;
 };
+
+bool Recovery::cachedFlip23(TetId t, int f, const FlipCost& cost, FlipCandidate& out)
+{
+  // The candidate depends on t's vertices, the neighbour across f and its apex.
+  CachedCandidate& entry = flip23Cache_[makeFaceRef(t, f)];
+  FaceRef n = mesh_.neighbor(t, f);
+  ringScratch_.assign(
+    &mesh_.tets[4 * static_cast<std::size_t>(t)], &mesh_.tets[4 * static_cast<std::size_t>(t)] + 4);
+  ringScratch_.push_back(n == kNoNeighbor ? -1 : mesh_.vertex(faceTet(n), faceIndex(n)));
+  if (entry.clock == 0 || entry.shell.size() != 1 || entry.shell[0] != n ||
+    entry.ring != ringScratch_)
+  {
+    entry.clock = 1;
+    entry.shell.assign(1, n);
+    entry.ring = ringScratch_;
+    entry.ok = flip23Candidate(mesh_, t, f, cost, entry.candidate);
+  }
+  if (entry.ok)
+    out = entry.candidate;
+  return entry.ok;
+}
+
+bool Recovery::cachedEdgeRemoval(TetId t,
+  VertexId p,
+  VertexId q,
+  const FlipCost& cost,
+  FlipCandidate& out)
+{
+  // The candidate depends only on the shell walked from t (its tet ids, which determine the
+  // old tets, and its ring, which determines every tet priced): the same walk, the same
+  // answer. Constrained flags do not change during a flip search.
+  CachedCandidate& entry = edgeRemovalCache_[{ t, p, q }];
+  bool closed = edgeShell(mesh_, t, p, q, shellScratch_, ringScratch_);
+  if (entry.clock == 0 || shellScratch_ != entry.shell || ringScratch_ != entry.ring)
+  {
+    entry.clock = 1;
+    entry.shell = shellScratch_;
+    entry.ring = ringScratch_;
+    entry.ok = closed && edgeRemovalCandidate(mesh_, t, p, q, cost, entry.candidate);
+  }
+  if (entry.ok)
+    out = entry.candidate;
+  return entry.ok;
+}
+
+void Recovery::replace(const std::vector<TetId>& oldTets,
+  const std::vector<TetVertices>& newTets,
+  std::vector<TetId>* created)
+{
+  replaceTets(mesh_, index_, oldTets, newTets, created);
+  for (const TetVertices& t : newTets)
+    for (VertexId v : t)
+      touch(v);
+}
+
+void Recovery::recordFailure(Failure& failure, VertexId seed, const FlipCost& cost)
+{
+  std::vector<TetId> pipe, star;
+  collectPipe(seed, memoized(cost), pipe);
+  vertexStar(mesh_, index_, seed, star); // the search starts from the seed's star
+  pipe.insert(pipe.end(), star.begin(), star.end());
+  failure.vertices.clear();
+  for (TetId t : pipe)
+    for (int i = 0; i < 4; ++i)
+      failure.vertices.push_back(mesh_.vertex(t, i));
+  std::sort(failure.vertices.begin(), failure.vertices.end());
+  failure.vertices.erase(
+    std::unique(failure.vertices.begin(), failure.vertices.end()), failure.vertices.end());
+  failure.clock = clock_ + 1; // valid: the clock never returns 0 after a change
+}
+
+bool Recovery::unchangedSince(const Failure& failure) const
+{
+  if (failure.clock == 0)
+    return false;
+  for (VertexId v : failure.vertices)
+  {
+    if (static_cast<std::size_t>(v) < vertexStamp_.size() && vertexStamp_[v] >= failure.clock)
+      return false;
+  }
+  return true;
+}
 
 bool Recovery::interrupted()
 {
@@ -221,6 +342,11 @@ bool Recovery::insertSteiner(const double* c, TetId tet)
   // star from, hence the tie-breaking order of the flip search; the corpus (gear.vtp) showed
   // that recovery is sensitive to that order, so keep the order of the tested version.
   index_.rebuild(mesh_);
+  std::vector<TetId> star;
+  vertexStar(mesh_, index_, id, star);
+  for (TetId t : star)
+    for (int i = 0; i < 4; ++i)
+      touch(mesh_.vertex(t, i));
   return true;
 }
 
@@ -364,7 +490,7 @@ int Recovery::findMoves(VertexId seed,
       const int* fv = kFaceVertices[f];
       if (!triedFaces.insert(sortedTriangle(v[fv[0]], v[fv[1]], v[fv[2]])).second)
         continue;
-      if (flip23Candidate(mesh_, t, f, cost, candidate))
+      if (cachedFlip23(t, f, cost, candidate))
         consider(true);
     }
     for (int i = 0; i < 4; ++i)
@@ -374,7 +500,7 @@ int Recovery::findMoves(VertexId seed,
         std::uint64_t key = edgeKey(v[i], v[j]);
         if (inputEdges_.count(key) || !triedEdges.insert(key).second)
           continue;
-        if (edgeRemovalCandidate(mesh_, t, v[i], v[j], cost, candidate))
+        if (cachedEdgeRemoval(t, v[i], v[j], cost, candidate))
           consider(false);
       }
     }
@@ -417,14 +543,14 @@ bool Recovery::lookahead(VertexId seed, const FlipCost& cost, std::vector<FlipCa
     }
     if (oldTets.size() != old.size())
       continue;
-    replaceTets(mesh_, index_, oldTets, neutral[m].newTets, &created);
+    replace(oldTets, neutral[m].newTets, &created);
     if (findMoves(seed, cost, pipe, next, nextIsFlip23, nullptr) > 0)
     {
       ++result_.neutralMoves;
       return true;
     }
     std::vector<TetId> undo = created;
-    replaceTets(mesh_, index_, undo, old);
+    replace(undo, old);
   }
   return false;
 }
@@ -434,6 +560,8 @@ bool Recovery::flipUntil(VertexId seed,
   const std::function<bool()>& done)
 {
   const FlipCost cost = memoized(exactCost);
+  flip23Cache_.clear();
+  edgeRemovalCache_.clear();
   std::vector<TetId> pipe;
   std::vector<FlipCandidate> neutral;
   for (int move = 0; move < options_.maxMovesPerItem; ++move)
@@ -447,7 +575,7 @@ bool Recovery::flipUntil(VertexId seed,
     neutral.clear();
     if (findMoves(seed, cost, pipe, best, bestIsFlip23, &neutral) > 0)
     {
-      replaceTets(mesh_, index_, best.oldTets, best.newTets);
+      replace(best.oldTets, best.newTets);
       if (bestIsFlip23)
         ++result_.flips23;
       else
@@ -489,8 +617,7 @@ bool Recovery::shrinkCrossingShell(const std::vector<TetId>& pipe, const FlipCos
         {
           TetId s = shell[k];
           int f = localIndex(mesh_, s, ring[(k + 1) % n]);
-          if (!flip23Candidate(mesh_, s, f, cost, candidate) ||
-            candidate.newCost > candidate.oldCost)
+          if (!cachedFlip23(s, f, cost, candidate) || candidate.newCost > candidate.oldCost)
             continue;
           if (!found || candidate.newCost - candidate.oldCost < best.newCost - best.oldCost ||
             (candidate.newCost - candidate.oldCost == best.newCost - best.oldCost &&
@@ -505,7 +632,7 @@ bool Recovery::shrinkCrossingShell(const std::vector<TetId>& pipe, const FlipCos
   }
   if (!found)
     return false;
-  replaceTets(mesh_, index_, best.oldTets, best.newTets);
+  replace(best.oldTets, best.newTets);
   ++result_.flips23;
   return true;
 }
@@ -598,6 +725,11 @@ void Recovery::markConstrained(FaceRef face)
   TetId t = faceTet(face);
   int f = faceIndex(face);
   mesh_.setConstrained(t, f, true);
+  for (int i = 0; i < 4; ++i)
+  {
+    if (i != f)
+      touch(mesh_.vertex(t, i));
+  }
   FaceRef n = mesh_.neighbor(t, f);
   if (n != kNoNeighbor)
     mesh_.setConstrained(faceTet(n), faceIndex(n), true);
@@ -610,6 +742,7 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
   std::vector<char> recovered(triangles.size(), 0);
   std::size_t recoveredCount = 0;
   progress_ = &progress;
+  failures_.assign(edges.size() + triangles.size(), Failure());
   auto edgeName = [&](std::size_t e)
   {
     std::ostringstream name;
@@ -645,11 +778,12 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
         return result_;
       VertexId a = edges[e][0], b = edges[e][1];
       auto exists = [&] { return findEdge(mesh_, index_, a, b) >= 0; };
-      if (exists())
+      if (exists() || unchangedSince(failures_[e]))
         continue;
       currentItem_ = edgeName(e);
-      if (!flipUntil(a, edgeCost(a, b), exists) && !interrupted_)
-        flipUntil(a, edgeAndFacesCost(e), exists);
+      if (!flipUntil(a, edgeCost(a, b), exists) && !interrupted_ &&
+        !flipUntil(a, edgeAndFacesCost(e), exists) && !interrupted_)
+        recordFailure(failures_[e], a, edgeAndFacesCost(e));
       if (interrupted_)
         return result_;
     }
@@ -664,7 +798,7 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
       bool edgesPresent = true;
       for (int e = 0; e < 3 && face < 0 && edgesPresent; ++e)
         edgesPresent = findEdge(mesh_, index_, t[e], t[(e + 1) % 3]) >= 0;
-      if (face < 0 && edgesPresent)
+      if (face < 0 && edgesPresent && !unchangedSince(failures_[edges.size() + i]))
       {
         currentItem_ = triangleName(i);
         auto exists = [&]
@@ -672,7 +806,8 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
           face = findFace(mesh_, index_, t[0], t[1], t[2]);
           return face >= 0;
         };
-        flipUntil(t[0], faceCost(t), exists);
+        if (!flipUntil(t[0], faceCost(t), exists) && !interrupted_)
+          recordFailure(failures_[edges.size() + i], t[0], faceCost(t));
         if (interrupted_)
           return result_;
       }

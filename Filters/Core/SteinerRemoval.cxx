@@ -11,10 +11,20 @@ namespace tetmesher
 namespace
 {
 
-bool removeVertex(TetMesh& mesh, VertexTetIndex& index, VertexId v)
+// Per-vertex scratch marks (stamps) for collecting the neighbours of a vertex in linear time.
+struct NeighbourMarks
+{
+  std::vector<std::uint32_t> stamp;
+  std::uint32_t epoch = 0;
+};
+
+bool removeVertex(TetMesh& mesh, VertexTetIndex& index, VertexId v, NeighbourMarks& marks)
 {
   std::vector<TetId> star;
+  std::vector<TetId> firstTet; // per neighbour: the first star tet having it
   FlipCost noCost;
+  if (marks.stamp.size() < static_cast<std::size_t>(mesh.vertexCount()))
+    marks.stamp.resize(mesh.vertexCount(), 0);
   // Each successful edge removal lowers the degree of v by one, so this loop is bounded.
   while (true)
   {
@@ -22,13 +32,23 @@ bool removeVertex(TetMesh& mesh, VertexTetIndex& index, VertexId v)
     if (star.empty())
       return false;
     std::vector<VertexId> neighbours;
+    firstTet.clear();
+    if (++marks.epoch == 0)
+    {
+      std::fill(marks.stamp.begin(), marks.stamp.end(), 0u);
+      marks.epoch = 1;
+    }
     for (TetId t : star)
     {
       for (int i = 0; i < 4; ++i)
       {
         VertexId w = mesh.vertex(t, i);
-        if (w != v && std::find(neighbours.begin(), neighbours.end(), w) == neighbours.end())
+        if (w != v && marks.stamp[w] != marks.epoch)
+        {
+          marks.stamp[w] = marks.epoch;
           neighbours.push_back(w);
+          firstTet.push_back(t);
+        }
       }
     }
     if (neighbours.size() == 4 && star.size() == 4)
@@ -60,17 +80,10 @@ bool removeVertex(TetMesh& mesh, VertexTetIndex& index, VertexId v)
     }
     FlipCandidate best, candidate;
     bool found = false;
-    for (VertexId w : neighbours)
+    for (std::size_t k = 0; k < neighbours.size(); ++k)
     {
-      TetId t = -1;
-      for (TetId s : star)
-      {
-        if (localIndex(mesh, s, w) >= 0)
-        {
-          t = s;
-          break;
-        }
-      }
+      VertexId w = neighbours[k];
+      TetId t = firstTet[k];
       // The first removable edge will do (shape is the optimiser's business); taking the
       // best of all costs a DP per neighbour at every step.
       if (edgeRemovalCandidate(mesh, t, v, w, noCost, candidate))
@@ -93,10 +106,11 @@ int removeSteinerPoints(TetMesh& mesh, std::vector<VertexId>& steiner)
   VertexTetIndex index;
   index.rebuild(mesh);
   std::vector<VertexId> kept;
+  NeighbourMarks marks;
   int removed = 0;
   for (VertexId v : steiner)
   {
-    if (removeVertex(mesh, index, v))
+    if (removeVertex(mesh, index, v, marks))
       ++removed;
     else
       kept.push_back(v);
