@@ -30,7 +30,7 @@ display = Show(cut, view)
 display.SetRepresentationType("Surface With Edges")
 ColorBy(display, ("CELLS", "Quality"))
 lut = GetColorTransferFunction("Quality")
-lut.RescaleTransferFunction(0.0, 0.5)
+lut.RescaleTransferFunction(0.0, 1.0)
 try:
     from paraview.simple import Hide3DWidgets
     Hide3DWidgets(proxy=cut.ClipType)  # the GUI shows the plane widget; keep the picture clean
