@@ -142,7 +142,10 @@ private:
   FlipCost edgeAndFacesCost(std::size_t e) const;
   // Tets whose tet/face/edge terms of `cost` are positive, grown from the star of `seed`.
   void collectPipe(VertexId seed, const FlipCost& cost, std::vector<TetId>& pipe);
-  int tetCost(const FlipCost& cost, TetId t) const;
+  // Sum of the measure over t and its faces and edges; cached per tet (checked against its
+  // vertices) while the cost is the current flip search's.
+  int tetCost(const FlipCost& cost, TetId t);
+  int exactTetCost(const FlipCost& cost, const TetVertices& v) const;
   // Greedy strictly-improving flips on the pipe; true when `done()` holds at the end.
   bool flipUntil(VertexId seed, const FlipCost& cost, const std::function<bool()>& done);
   // Collects the pipe and the flips on it; returns the best strict gain (0: none), with the
@@ -215,7 +218,17 @@ private:
   std::uint64_t clock_ = 0;
   std::vector<Failure> failures_; // edges by index, then triangles after them
   std::unordered_map<FaceRef, CachedCandidate> flip23Cache_;
-  std::vector<TetId> shellScratch_;
+  std::vector<TetId> shellScratch_, starScratch_;
+  std::vector<std::uint32_t> pipeStamp_;
+  std::uint32_t pipeEpoch_ = 0;
+  struct TetCostEntry
+  {
+    TetVertices vertices;
+    int cost = 0;
+    bool valid = false;
+  };
+  std::vector<TetCostEntry> tetCostCache_;
+  const FlipCost* tetCostOwner_ = nullptr;
   std::vector<VertexId> ringScratch_;
   std::unordered_map<std::array<VertexId, 3>, CachedCandidate, TupleHash> edgeRemovalCache_;
 };
@@ -418,9 +431,26 @@ FlipCost Recovery::faceCost(const std::array<VertexId, 3>& tri) const
   return c;
 }
 
-int Recovery::tetCost(const FlipCost& cost, TetId t) const
+int Recovery::tetCost(const FlipCost& cost, TetId t)
 {
   TetVertices v = tetVertices(t);
+  TetCostEntry* entry = nullptr;
+  if (&cost == tetCostOwner_)
+  {
+    if (static_cast<std::size_t>(t) >= tetCostCache_.size())
+      tetCostCache_.resize(2 * static_cast<std::size_t>(t) + 16);
+    entry = &tetCostCache_[t];
+    if (entry->valid && entry->vertices == v)
+      return entry->cost;
+  }
+  int c = exactTetCost(cost, v);
+  if (entry)
+    *entry = { v, c, true };
+  return c;
+}
+
+int Recovery::exactTetCost(const FlipCost& cost, const TetVertices& v) const
+{
   int c = cost.tet ? cost.tet(v) : 0;
   for (int f = 0; f < 4 && cost.face; ++f)
   {
@@ -435,10 +465,27 @@ int Recovery::tetCost(const FlipCost& cost, TetId t) const
 
 void Recovery::collectPipe(VertexId seed, const FlipCost& cost, std::vector<TetId>& pipe)
 {
-  std::vector<TetId> star;
+  std::vector<TetId>& star = starScratch_;
   vertexStar(mesh_, index_, seed, star);
   pipe.clear();
-  std::set<TetId> visited(star.begin(), star.end());
+  if (++pipeEpoch_ == 0)
+  {
+    std::fill(pipeStamp_.begin(), pipeStamp_.end(), 0u);
+    pipeEpoch_ = 1;
+  }
+  if (pipeStamp_.size() < static_cast<std::size_t>(mesh_.tetCapacity()))
+    pipeStamp_.resize(2 * static_cast<std::size_t>(mesh_.tetCapacity()), 0u);
+  auto visit = [&](TetId t)
+  {
+    if (static_cast<std::size_t>(t) >= pipeStamp_.size())
+      pipeStamp_.resize(2 * static_cast<std::size_t>(t) + 16, 0u);
+    if (pipeStamp_[t] == pipeEpoch_)
+      return false;
+    pipeStamp_[t] = pipeEpoch_;
+    return true;
+  };
+  for (TetId t : star)
+    visit(t);
   for (TetId t : star)
   {
     if (tetCost(cost, t) > 0)
@@ -449,7 +496,7 @@ void Recovery::collectPipe(VertexId seed, const FlipCost& cost, std::vector<TetI
     for (int f = 0; f < 4; ++f)
     {
       FaceRef n = mesh_.neighbor(pipe[k], f);
-      if (n == kNoNeighbor || !visited.insert(faceTet(n)).second)
+      if (n == kNoNeighbor || !visit(faceTet(n)))
         continue;
       if (tetCost(cost, faceTet(n)) > 0)
         pipe.push_back(faceTet(n));
@@ -562,6 +609,13 @@ bool Recovery::flipUntil(VertexId seed,
   const FlipCost cost = memoized(exactCost);
   flip23Cache_.clear();
   edgeRemovalCache_.clear();
+  tetCostCache_.clear();
+  tetCostOwner_ = &cost;
+  struct OwnerReset
+  {
+    const FlipCost*& owner;
+    ~OwnerReset() { owner = nullptr; }
+  } ownerReset{ tetCostOwner_ };
   std::vector<TetId> pipe;
   std::vector<FlipCandidate> neutral;
   for (int move = 0; move < options_.maxMovesPerItem; ++move)
