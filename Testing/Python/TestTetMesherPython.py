@@ -89,6 +89,78 @@ check("torus.vtp", 1)
 check("nested_spheres.vtp", 2, volume="outer")
 check("nested_spheres.vtp", 1, volume="outer-inner", EnclosedShellsAreHoles=True)
 
+# Size field: a constant size array, then a controlling space (an image of sizes).
+def edge_lengths(points, tets):
+    pairs = np.concatenate([tets[:, [i, j]] for i in range(4) for j in range(i + 1, 4)])
+    pairs = np.unique(np.sort(pairs, axis=1), axis=0)
+    return np.linalg.norm(points[pairs[:, 0]] - points[pairs[:, 1]], axis=1)
+
+
+from vtkmodules.vtkCommonCore import vtkDoubleArray  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
+
+points, triangles = read_surface(os.path.join(data, "cube.vtp"))
+h = 0.1
+poly = to_polydata(points, triangles)
+sizes = vtkDoubleArray()
+sizes.SetName("size")
+sizes.SetNumberOfTuples(len(points))
+sizes.Fill(h)
+poly.GetPointData().AddArray(sizes)
+mesher = vtkTetMesher()
+mesher.SetInputData(poly)
+mesher.SetSizeArrayName("size")
+mesher.Update()
+sized = mesher.GetOutput()
+out_points, tets = grid_arrays(sized)
+band = np.mean((edge_lengths(out_points, tets) / h >= 0.7) & (edge_lengths(out_points, tets) / h <= 1.42))
+used = vtk_to_numpy(sized.GetPointData().GetArray("h"))
+regular_tets = 1.0 / (h ** 3 / (6 * np.sqrt(2)))  # unit cube / volume of the regular tet of edge h
+print(f"cube, h = {h}: {len(tets)} tets ({len(tets) / regular_tets:.2f} x the regular-tet count), "
+      f"{100 * band:.1f}% of edges in [0.7, 1.42] h")
+if band < 0.8 or not np.allclose(used, h):
+    failures.append(f"constant size: {100 * band:.1f}% of edges in the band, h used {used.min()}..{used.max()}")
+if not 0.8 < len(tets) / regular_tets < 1.5:
+    failures.append(f"constant size: {len(tets)} tets, far from the regular-tet count {regular_tets:.0f}")
+problems = check_boundary_mesh(points, triangles, out_points, tets)
+if problems:
+    failures.append(f"constant size: {problems}")
+
+# Controlling space: an image over the cube whose size grows with x (0.06 .. 0.3).
+space = vtkImageData()
+space.SetDimensions(11, 2, 2)
+space.SetOrigin(-0.5, -0.5, -0.5)
+space.SetSpacing(0.2, 2, 2)
+field = vtkDoubleArray()
+field.SetName("h")
+field.SetNumberOfTuples(space.GetNumberOfPoints())
+for i in range(space.GetNumberOfPoints()):
+    field.SetValue(i, 0.06 + 0.12 * space.GetPoint(i)[0] + 0.06 * 0.5 * 2)
+space.GetPointData().AddArray(field)
+mesher = vtkTetMesher()
+mesher.SetInputData(to_polydata(points, triangles))
+mesher.SetInputData(1, space)
+mesher.Update()
+graded = mesher.GetOutput()
+gp, gt = grid_arrays(graded)
+gh = vtk_to_numpy(graded.GetPointData().GetArray("h"))
+left, right = gp[:, 0] < 0.2, gp[:, 0] > 0.8
+if not (gh[left].mean() < gh[right].mean()) or len(gt) <= len(tets) * 0.2:
+    failures.append("controlling space: sizes do not follow the image")
+print(f"controlling space: {len(gt)} tets, mean h {gh[left].mean():.3f} (x < 0.2) vs {gh[right].mean():.3f} (x > 0.8)")
+problems = check_boundary_mesh(points, triangles, gp, gt)
+if problems:
+    failures.append(f"controlling space: {problems}")
+
+# Boundary only: no interior points, the paper's figure 2.
+mesher = vtkTetMesher()
+mesher.SetInputData(to_polydata(points, triangles))
+mesher.RefineOff()
+mesher.OptimizeOff()
+mesher.Update()
+if mesher.GetOutput().GetNumberOfPoints() != len(points):
+    failures.append("RefineOff: the boundary mesh has interior points")
+
 # Bad input: an open surface is refused, and the message names the open edges.
 points, triangles = read_surface(os.path.join(data, "sphere.off"))
 mesher, errors = mesh(points, triangles[1:])
