@@ -8,8 +8,12 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
 
 using namespace tetmesher;
 using namespace tetmesher::testing;
@@ -282,4 +286,109 @@ TEST(BoundaryMesh, ChecksCatchBrokenMeshes)
   EXPECT_NE(checkMesh(s, onSurface, sign, 1), "");
 
   EXPECT_NE(checkMesh(s, good, sign, 2), ""); // wrong region count
+}
+
+namespace
+{
+// Minimal .off reader for the Data/ corpus (counts on the header line or the next one,
+// polygons as fans); coordinates are read with full double precision.
+bool readCorpusOff(const std::string& name, Surface& s)
+{
+  const std::filesystem::path path =
+    std::filesystem::path(__FILE__).parent_path().parent_path().parent_path() / "Data" / name;
+  std::ifstream in(path);
+  std::string header;
+  long nv = 0, nf = 0, ne = 0;
+  if (!(in >> header) || header.find("OFF") == std::string::npos || !(in >> nv >> nf >> ne))
+    return false;
+  for (long v = 0; v < nv; ++v)
+  {
+    double x, y, z;
+    if (!(in >> x >> y >> z))
+      return false;
+    s.addPoint(x, y, z);
+  }
+  for (long f = 0; f < nf; ++f)
+  {
+    int n = 0;
+    in >> n;
+    std::vector<std::int32_t> ids(n);
+    for (auto& id : ids)
+      in >> id;
+    if (!in || n < 3)
+      return false;
+    for (int k = 1; k + 1 < n; ++k)
+      s.addTriangle(ids[0], ids[k], ids[k + 1]);
+  }
+  return true;
+}
+
+// The corpus surfaces are closed single shells, oriented one way or the other.
+std::vector<int> consistentSign(const Surface& s)
+{
+  std::vector<int> sign = allOutward(s);
+  if (enclosedVolume6(s, sign) < 0)
+    sign.assign(sign.size(), -1);
+  return sign;
+}
+} // namespace
+
+TEST(BoundaryMesh, SlowCorpusSurfaces)
+{
+  // CAD surfaces with many coplanar points on which recovery used to take 10 s to minutes
+  // (long flip searches re-running exact coplanar tests); now a few seconds in all.
+  for (const char* name : { "anchor.off", "couplingdown.off", "rotor_small.off", "turbine.off" })
+  {
+    Surface s;
+    ASSERT_TRUE(readCorpusOff(name, s)) << name;
+    std::printf("%s:\n", name);
+    const auto start = std::chrono::steady_clock::now();
+    MesherResult r = meshAndCheck(s, consistentSign(s), 1);
+    EXPECT_TRUE(r.ok) << name << ": " << r.error;
+    const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_LT(seconds, 60.0) << name; // generous: the machine may be loaded
+  }
+}
+
+TEST(BoundaryMesh, TimeBudgetAndAbortDuringRecovery)
+{
+  Surface s;
+  ASSERT_TRUE(readCorpusOff("turbine.off", s));
+  // A budget far below what recovery needs ends it with an error naming the item.
+  MesherOptions options;
+  options.maxSeconds = 0.01;
+  auto start = std::chrono::steady_clock::now();
+  MesherResult r =
+    meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), options);
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(
+    r.error.find("exceeded the time budget of 0.01 s while recovering input"), std::string::npos)
+    << r.error;
+  EXPECT_LT(seconds, 5.0);
+  // An abort requested once recovery runs is seen during recovery, not only between stages.
+  bool recovering = false;
+  std::chrono::steady_clock::time_point abortAt;
+  start = std::chrono::steady_clock::now();
+  r = meshSurface(s.points.data(),
+    s.pointCount(),
+    s.triangles.data(),
+    s.triangleCount(),
+    {},
+    [&](double f)
+    {
+      if (f < 0.2)
+        return true;
+      if (!recovering)
+      {
+        recovering = true;
+        abortAt = std::chrono::steady_clock::now() + std::chrono::milliseconds(100);
+      }
+      return std::chrono::steady_clock::now() < abortAt;
+    });
+  seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("aborted during boundary recovery"), std::string::npos) << r.error;
+  EXPECT_LT(seconds, 5.0);
 }
