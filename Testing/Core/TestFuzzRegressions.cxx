@@ -37,7 +37,7 @@ const std::map<std::string, std::string> kKnownFailures = {};
 
 // Inputs that once took over libFuzzer's -timeout=10 (under ASan): they must finish, and in
 // an optimised build well within this many seconds.
-constexpr double kSlowInputSeconds = 60.0;
+constexpr double kSlowInputSeconds = 120.0;
 
 TEST(FuzzRegressions, StoredInputsReplay)
 {
