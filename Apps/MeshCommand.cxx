@@ -51,6 +51,7 @@ options:
   --no-optimize         skip quality optimisation
   --passes N            optimisation passes (default 3)
   --quality-target Q    optimise tets below this quality (default 0.3)
+  --dihedral-target D   then raise the smallest dihedral angles towards D degrees
   --stats               print the quality summary of the result
   --holes               enclosed shells are holes instead of regions of their own
   --max-steiner N       budget of recovery Steiner points (default 100 + 4 per triangle)
@@ -90,7 +91,8 @@ int RunMesh(int argc, char* argv[])
   bool stats = false, holes = false, check = true, quiet = false, boundaryOnly = false,
        optimize = true;
   int maxSteiner = -1, passes = 3;
-  double size = 0, sizeScale = 1, minSize = 0, maxSize = 0, gradation = 1.5, qualityTarget = 0.3;
+  double dihedralTarget = 0, size = 0, sizeScale = 1, minSize = 0, maxSize = 0, gradation = 1.5,
+         qualityTarget = 0.3;
   std::string sizeArray, background, backgroundArray = "h";
   // Parses the number after option argv[i]; false (and a message) when it is not one.
   auto number = [&](int& i, double low, double& value)
@@ -129,7 +131,8 @@ int RunMesh(int argc, char* argv[])
       backgroundArray = argv[++i];
     else if (i + 1 < argc &&
       (arg == "--size" || arg == "--size-scale" || arg == "--min-size" || arg == "--max-size" ||
-        arg == "--gradation" || arg == "--quality-target" || arg == "--passes"))
+        arg == "--gradation" || arg == "--quality-target" || arg == "--passes" ||
+        arg == "--dihedral-target"))
     {
       double value = 0;
       if (!number(i, arg == "--size" || arg == "--size-scale" ? 1e-300 : 0.0, value))
@@ -144,6 +147,8 @@ int RunMesh(int argc, char* argv[])
         maxSize = value;
       else if (arg == "--gradation")
         gradation = value;
+      else if (arg == "--dihedral-target")
+        dihedralTarget = std::min(value, 70.0);
       else if (arg == "--quality-target")
         qualityTarget = std::min(value, 1.0);
       else
@@ -223,6 +228,7 @@ int RunMesh(int argc, char* argv[])
     mesher->SetGradation(gradation);
     mesher->SetOptimizationPasses(passes);
     mesher->SetQualityTarget(qualityTarget);
+    mesher->SetDihedralTarget(dihedralTarget);
     if (!sizeArray.empty())
       mesher->SetSizeArrayName(sizeArray.c_str());
     vtkSmartPointer<vtkDataSet> space;

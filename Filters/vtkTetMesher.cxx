@@ -255,6 +255,7 @@ void vtkTetMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OptimizationPasses: " << this->OptimizationPasses << "\n";
   os << indent << "QualityTarget: " << this->QualityTarget << "\n";
   os << indent << "QualityMeasure: " << this->QualityMeasure << "\n";
+  os << indent << "DihedralTarget: " << this->DihedralTarget << "\n";
 }
 
 vtkTable* vtkTetMesher::GetHistogramOutput()
@@ -464,6 +465,7 @@ int vtkTetMesher::RequestData(vtkInformation*,
   options.optimize = this->Optimize && this->OptimizationPasses > 0;
   options.optimization.passes = this->OptimizationPasses;
   options.optimization.qualityTarget = this->QualityTarget;
+  options.optimization.dihedralTarget = this->DihedralTarget;
   options.optimization.measure = this->QualityMeasure == MIN_DIHEDRAL
     ? tetmesher::QualityMeasure::MinDihedral
     : tetmesher::QualityMeasure::PaperQ;

@@ -146,6 +146,16 @@ public:
   vtkGetMacro(QualityTarget, double);
   ///@}
 
+  ///@{
+  /**
+   * When > 0 (degrees): after the Q stage, a second optimisation stage raises the smallest
+   * dihedral angles towards this target, keeping the minimum Q. Default 0 (off): it costs
+   * about as much time again.
+   */
+  vtkSetClampMacro(DihedralTarget, double, 0.0, 70.0);
+  vtkGetMacro(DihedralTarget, double);
+  ///@}
+
   enum QualityMeasures
   {
     PAPER_Q = 0,     // 2 sqrt(6) r_in / l_max
@@ -241,6 +251,7 @@ protected:
   bool Optimize = true;
   int OptimizationPasses = 3;
   double QualityTarget = 0.3;
+  double DihedralTarget = 0.0;
   int QualityMeasure = PAPER_Q;
   int MaximumSteinerPoints = -1;
   bool RemoveSteinerPoints = true;

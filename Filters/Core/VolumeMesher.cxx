@@ -105,7 +105,31 @@ VolumeMeshResult meshVolume(const double* points,
   }
   extractRegionMesh(mesh, result.points, result.tets, result.regionIds);
   if (options.refine)
+  {
+    // Vertices the optimiser inserted have no size yet: the mean of their known neighbours.
+    const std::size_t known = size.size(), vertexCount = result.points.size() / 3;
+    if (known < vertexCount)
+    {
+      std::vector<double> sum(vertexCount, 0.0);
+      std::vector<int> count(vertexCount, 0);
+      for (std::size_t t = 0; t + 3 < result.tets.size(); t += 4)
+        for (int i = 0; i < 4; ++i)
+          for (int j = 0; j < 4; ++j)
+          {
+            const auto a = static_cast<std::size_t>(result.tets[t + static_cast<std::size_t>(i)]);
+            const auto b = static_cast<std::size_t>(result.tets[t + static_cast<std::size_t>(j)]);
+            if (a >= known && b < known)
+            {
+              sum[a] += size[b];
+              ++count[a];
+            }
+          }
+      size.resize(vertexCount);
+      for (std::size_t v = known; v < vertexCount; ++v)
+        size[v] = count[v] > 0 ? sum[v] / count[v] : 0.0;
+    }
     result.vertexSize = std::move(size);
+  }
   result.boundaryFaceTet = findTriangleFaces(result.tets, triangles, triangleCount);
   result.boundaryStats = std::move(boundary);
   result.ok = true;
