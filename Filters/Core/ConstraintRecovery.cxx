@@ -219,6 +219,8 @@ private:
   std::vector<Failure> failures_; // edges by index, then triangles after them
   std::unordered_map<FaceRef, CachedCandidate> flip23Cache_;
   std::vector<TetId> shellScratch_, starScratch_;
+  std::unordered_set<std::array<VertexId, 3>, TupleHash> triedFaces_; // findMoves scratch
+  std::unordered_set<std::uint64_t> triedEdges_;
   std::vector<std::uint32_t> pipeStamp_;
   std::uint32_t pipeEpoch_ = 0;
   struct TetCostEntry
@@ -515,8 +517,10 @@ int Recovery::findMoves(VertexId seed,
   FlipCandidate candidate;
   int bestGain = 0;
   best.minQuality = -1;
-  std::set<std::array<VertexId, 3>> triedFaces;
-  std::set<std::uint64_t> triedEdges;
+  auto& triedFaces = triedFaces_;
+  auto& triedEdges = triedEdges_;
+  triedFaces.clear();
+  triedEdges.clear();
   auto consider = [&](bool isFlip23)
   {
     int gain = candidate.oldCost - candidate.newCost;
@@ -797,6 +801,20 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
   std::size_t recoveredCount = 0;
   progress_ = &progress;
   failures_.assign(edges.size() + triangles.size(), Failure());
+  // An edge found at clock c is still there while no tet incident to its first vertex has
+  // been created or deleted since (every such change stamps all the tet's vertices).
+  std::vector<std::uint64_t> edgeFoundAt(edges.size(), 0);
+  auto edgePresent = [&](std::size_t e)
+  {
+    VertexId a = edges[e][0];
+    if (edgeFoundAt[e] > 0 &&
+      (static_cast<std::size_t>(a) >= vertexStamp_.size() || vertexStamp_[a] < edgeFoundAt[e]))
+      return true;
+    if (findEdge(mesh_, index_, a, edges[e][1]) < 0)
+      return false;
+    edgeFoundAt[e] = clock_ + 1;
+    return true;
+  };
   auto edgeName = [&](std::size_t e)
   {
     std::ostringstream name;
@@ -831,7 +849,7 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
       if (!keepGoing(e + 1))
         return result_;
       VertexId a = edges[e][0], b = edges[e][1];
-      auto exists = [&] { return findEdge(mesh_, index_, a, b) >= 0; };
+      auto exists = [&] { return edgePresent(e); };
       if (exists() || unchangedSince(failures_[e]))
         continue;
       currentItem_ = edgeName(e);
@@ -908,7 +926,7 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
     for (std::size_t e = 0; e < edges.size(); ++e)
     {
       VertexId a = edges[e][0], b = edges[e][1];
-      if (findEdge(mesh_, index_, a, b) >= 0)
+      if (edgePresent(e))
         continue;
       // Alternate between placing the point against the edge alone and against the edge and
       // its triangles (which reaches tets straddling a planar part of the surface).

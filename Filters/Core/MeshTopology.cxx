@@ -88,32 +88,59 @@ void vertexStar(const TetMesh& mesh, VertexTetIndex& index, VertexId v, std::vec
   }
 }
 
-TetId findEdge(const TetMesh& mesh, VertexTetIndex& index, VertexId a, VertexId b)
+namespace
 {
-  std::vector<TetId> star;
-  vertexStar(mesh, index, a, star);
-  for (TetId t : star)
+// Walks the star of a in the order of vertexStar and returns the first tet for which
+// `match` is true (or -1), without building the whole star.
+template<typename Match>
+TetId firstInStar(const TetMesh& mesh, VertexTetIndex& index, VertexId a, Match match)
+{
+  TetId start = index.tetOf(mesh, a);
+  if (start < 0)
+    return -1;
+  thread_local std::vector<TetId> queue;
+  queue.clear();
+  index.startVisit();
+  index.visit(start);
+  queue.push_back(start);
+  for (std::size_t k = 0; k < queue.size(); ++k)
   {
-    if (localIndex(mesh, t, b) >= 0)
+    TetId t = queue[k];
+    if (match(t))
       return t;
+    int ia = localIndex(mesh, t, a);
+    for (int f = 0; f < 4; ++f)
+    {
+      FaceRef n = mesh.neighbor(t, f);
+      if (f == ia || n == kNoNeighbor)
+        continue;
+      TetId u = faceTet(n);
+      if (index.visit(u))
+        queue.push_back(u);
+    }
   }
   return -1;
+}
+} // namespace
+
+TetId findEdge(const TetMesh& mesh, VertexTetIndex& index, VertexId a, VertexId b)
+{
+  return firstInStar(mesh, index, a, [&](TetId t) { return localIndex(mesh, t, b) >= 0; });
 }
 
 FaceRef findFace(const TetMesh& mesh, VertexTetIndex& index, VertexId a, VertexId b, VertexId c)
 {
-  std::vector<TetId> star;
-  vertexStar(mesh, index, a, star);
-  for (TetId t : star)
+  TetId t = firstInStar(mesh,
+    index,
+    a,
+    [&](TetId u) { return localIndex(mesh, u, b) >= 0 && localIndex(mesh, u, c) >= 0; });
+  if (t < 0)
+    return -1;
+  for (int f = 0; f < 4; ++f)
   {
-    if (localIndex(mesh, t, b) < 0 || localIndex(mesh, t, c) < 0)
-      continue;
-    for (int f = 0; f < 4; ++f)
-    {
-      VertexId w = mesh.vertex(t, f);
-      if (w != a && w != b && w != c)
-        return makeFaceRef(t, f);
-    }
+    VertexId w = mesh.vertex(t, f);
+    if (w != a && w != b && w != c)
+      return makeFaceRef(t, f);
   }
   return -1;
 }
