@@ -227,8 +227,9 @@ private:
   {
     TetVertices vertices;
     int cost = 0;
-    bool valid = false;
+    std::uint64_t epoch = 0; // valid when equal to tetCostEpoch_
   };
+  std::uint64_t tetCostEpoch_ = 0;
   std::vector<TetCostEntry> tetCostCache_;
   const FlipCost* tetCostOwner_ = nullptr;
   std::vector<VertexId> ringScratch_;
@@ -442,12 +443,12 @@ int Recovery::tetCost(const FlipCost& cost, TetId t)
     if (static_cast<std::size_t>(t) >= tetCostCache_.size())
       tetCostCache_.resize(2 * static_cast<std::size_t>(t) + 16);
     entry = &tetCostCache_[t];
-    if (entry->valid && entry->vertices == v)
+    if (entry->epoch == tetCostEpoch_ && entry->vertices == v)
       return entry->cost;
   }
   int c = exactTetCost(cost, v);
   if (entry)
-    *entry = { v, c, true };
+    *entry = { v, c, tetCostEpoch_ };
   return c;
 }
 
@@ -613,7 +614,7 @@ bool Recovery::flipUntil(VertexId seed,
   const FlipCost cost = memoized(exactCost);
   flip23Cache_.clear();
   edgeRemovalCache_.clear();
-  tetCostCache_.clear();
+  ++tetCostEpoch_; // forget the cached tet costs (in O(1))
   tetCostOwner_ = &cost;
   struct OwnerReset
   {
