@@ -6,6 +6,10 @@
 # first), builds the CLI into build-bench/ (Release, -j2), then runs scripts/benchmark.py,
 # which writes Testing/Benchmarks/results/corpus.{md,csv} and PNGs (corpus-partial.* for
 # --quick/--cases).
+#   bash scripts/benchmark.sh --mode sized [--cases a,b] [--fine a,b] [--tools ...]
+# runs scripts/benchmark_sized.py instead: the full pipeline at a constant size h, TetMesher
+# vs TetGen -q -a vs Gmsh, into Testing/Benchmarks/results/sized.{md,csv}.
+# BENCH_BUILD=dir builds and uses the CLI in dir instead of build-bench/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -23,9 +27,19 @@ if [ "${#missing[@]}" -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-if [ ! -f build-bench/build.ninja ]; then
-  cmake -S . -B build-bench -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF
+BUILD="${BENCH_BUILD:-build-bench}"
+if [ ! -f "$BUILD/build.ninja" ]; then
+  cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF
 fi
-cmake --build build-bench -j2 --target tetmesher
+cmake --build "$BUILD" -j2 --target tetmesher
 
-exec /usr/bin/python3 scripts/benchmark.py --tetmesher build-bench/bin/tetmesher "$@"
+script=scripts/benchmark.py
+if [ "${1:-}" = "--mode" ]; then
+  case "${2:-}" in
+    boundary) ;;
+    sized) script=scripts/benchmark_sized.py ;;
+    *) echo "benchmark: --mode boundary|sized" >&2; exit 2 ;;
+  esac
+  shift 2
+fi
+exec /usr/bin/python3 "$script" --tetmesher "$BUILD/bin/tetmesher" "$@"

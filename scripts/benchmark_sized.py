@@ -1,0 +1,312 @@
+#!/usr/bin/python3
+"""Side-by-side benchmark, mode "sized": the full pipeline (boundary mesh, interior points for
+a constant target edge length h, quality optimisation) of TetMesher vs TetGen vs Gmsh.
+
+Companion of scripts/benchmark.py (mode "boundary"), whose surface loading, tool inputs
+(.off / discrete MSH 2.2 with exact doubles), output readers, timing and exact checks it
+reuses; nothing the tools print is trusted. Not part of the test suite. Run with Debian's
+/usr/bin/python3, usually via `bash scripts/benchmark.sh --mode sized`.
+
+Per case a constant h: the mean length of the input's boundary edges (and h/2 on a few
+cases, --fine). Per case x h x tool: exit code, wall time (median of --repeat runs for fast
+runs), peak RSS, tets, tets/s, boundary kept exactly (benchmark.analyse: input triangles =
+output boundary faces, no Steiner point on the boundary), Q min/mean/share < 0.3, min/max
+dihedral, share of the mesh's edges with length in [0.7, 1.42]*h (all edges, and interior
+edges = edges not on an input triangle), and ratios vs TetMesher's default run.
+
+Tools:
+  tetmesher        tetmesher mesh IN -o OUT.vtu -q --size H
+  tetmesher-dt20   ... --dihedral-target 20
+  tetgen-q         tetgen -pq1.2a<V>   (V = h^3/(6*sqrt(2)), the volume of the regular tet of
+                   edge h; TetGen may split boundary edges/faces: Steiner points on the boundary)
+  tetgen-qO9       tetgen -pq1.2a<V>O9/7 (optimisation level 9 of 0-9, all operations 7 =
+                   flips 1 + smoothing 2 + insertion/deletion 4; TetGen's default is -O2/7;
+                   it only works on tets with a dihedral angle > 165 deg, TetGen's default o/165)
+  tetgen-qO9o150   tetgen -pq1.2a<V>O9/7o/150 (the same, aiming at max dihedral 150 deg)
+  tetgen-Yq        tetgen -pYq1.2a<V>  (boundary not split, comparable with TetMesher)
+  gmsh-delaunay    gmsh in.geo -3 -nt 1, Mesh.Algorithm3D=1, -clmin H -clmax H
+  gmsh-hxt         same with Mesh.Algorithm3D=10
+
+Usage:
+  /usr/bin/python3 scripts/benchmark_sized.py [--cases a,b] [--fine a,b] [--tools ...]
+      [--repeat 3] [--timeout 120] [--out Testing/Benchmarks/results]
+"""
+
+import argparse
+import csv
+import datetime
+import math
+import os
+import shlex
+import statistics
+import sys
+import tempfile
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import benchmark as B  # noqa: E402
+
+ROOT = B.ROOT
+CASES = ["cube", "icosphere", "torus", "nested_spheres", "gear", "sphere", "fandisk", "knot1"]
+FINE = ["cube", "torus"]
+TOOLS = ["tetmesher", "tetmesher-dt20", "tetgen-q", "tetgen-qO9", "tetgen-qO9o150", "tetgen-Yq",
+         "gmsh-delaunay", "gmsh-hxt"]
+
+
+def mean_edge(pts, tris):
+    e = np.concatenate([tris[:, [0, 1]], tris[:, [1, 2]], tris[:, [0, 2]]])
+    e = np.unique(np.sort(e, axis=1), axis=0)
+    return float(np.linalg.norm(pts[e[:, 0]] - pts[e[:, 1]], axis=1).mean())
+
+
+def edge_stats(pts_out, tets, case, h):
+    """Shares of edges with length in [0.7, 1.42]*h: all edges and interior ones (an edge is
+    a boundary edge when both ends are input points and it is an edge of an input triangle)."""
+    e = np.concatenate([tets[:, [i, j]] for i, j in ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))])
+    e = np.unique(np.sort(e, axis=1), axis=0)
+    L = np.linalg.norm(pts_out[e[:, 0]] - pts_out[e[:, 1]], axis=1) / h
+    ok = (L >= 0.7) & (L <= 1.42)
+    # boundary edges: map output points to input ids by exact coordinates
+    lookup = {(float(x), float(y), float(z)): i for i, (x, y, z) in enumerate(case["pts"])}
+    ids = np.array([lookup.get((float(p[0]), float(p[1]), float(p[2])), -1) for p in pts_out])
+    t = case["tris"]
+    be = np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [0, 2]]])
+    be = np.sort(be, axis=1)
+    n = len(case["pts"]) + 1
+    bkeys = set((be[:, 0] * n + be[:, 1]).tolist())
+    a, b = ids[e[:, 0]], ids[e[:, 1]]
+    lo, hi = np.minimum(a, b), np.maximum(a, b)
+    isb = np.array([(l >= 0 and (l * n + m) in bkeys) for l, m in zip(lo.tolist(), hi.tolist())],
+                   dtype=bool)
+    inner = ~isb
+    return dict(edges=int(len(e)), edge_in_range=float(ok.mean()),
+                inner_edge_in_range=float(ok[inner].mean()) if inner.any() else None,
+                edge_len_median=float(np.median(L)))
+
+
+def tool_job(tool, case, h, work, tetmesher):
+    name = "%s-h%s" % (case["name"], case["hlabel"])
+    d = os.path.join(work, name, tool)
+    os.makedirs(d, exist_ok=True)
+    src = case["path"]
+    hs = repr(float(h))
+    if tool.startswith("tetmesher"):
+        out = os.path.join(d, "out.vtu")
+        cmd = [tetmesher, "mesh", src, "-o", out, "-q", "--size", hs]
+        if tool == "tetmesher-dt20":
+            cmd += ["--dihedral-target", "20"]
+        return cmd, d, lambda: B.read_vtu(out), [out]
+    if tool.startswith("tetgen"):
+        inp = os.path.join(d, "in.off")
+        if src.endswith(".off"):
+            with open(src) as fi, open(inp, "w") as fo:
+                fo.write(fi.read())
+        else:
+            B.write_off(inp, case["pts"], case["tris"])
+        V = h ** 3 / (6.0 * math.sqrt(2.0))
+        sw = {"tetgen-q": "-pq1.2a%.6g", "tetgen-qO9": "-pq1.2a%.6gO9/7",
+              "tetgen-qO9o150": "-pq1.2a%.6gO9/7o/150",
+              "tetgen-Yq": "-pYq1.2a%.6g"}[tool] % V
+        stem = os.path.join(d, "in.1")
+        return ["tetgen", sw, "-Q", "in.off"], d, lambda: B.read_tetgen(stem), \
+            [stem + ".node", stem + ".ele"]
+    if tool.startswith("gmsh"):
+        algo = 1 if tool == "gmsh-delaunay" else 10
+        B.write_gmsh_input(os.path.join(d, "in.msh"), os.path.join(d, "in.geo"), case["pts"],
+                           case["tris"], case["sid"], case["parent"], algo)
+        out = os.path.join(d, "out.msh")
+        return (["gmsh", "in.geo", "-3", "-nt", "1", "-setnumber", "Mesh.Algorithm3D", str(algo),
+                 "-clmin", hs, "-clmax", hs, "-format", "msh2", "-bin", "-save_all", "-o", "out.msh"],
+                d, lambda: B.read_msh2_binary(out), [out])
+    raise ValueError(tool)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--cases", default=",".join(CASES))
+    ap.add_argument("--fine", default=",".join(FINE), help="cases also run with h/2")
+    ap.add_argument("--tools", default=",".join(TOOLS))
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--slow", type=float, default=2.0)
+    ap.add_argument("--timeout", type=float, default=120.0)
+    ap.add_argument("--tetmesher", default=os.path.join(ROOT, "build-bench", "bin", "tetmesher"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "Testing", "Benchmarks", "results"))
+    ap.add_argument("--work", default=None)
+    ap.add_argument("--name", default="sized", help="output stem (sized.md, sized.csv)")
+    args = ap.parse_args()
+    args.tetmesher = os.path.abspath(args.tetmesher)
+    names = [c.strip() for c in args.cases.split(",") if c.strip()]
+    fine = [c.strip() for c in args.fine.split(",") if c.strip()]
+    tools = [t.strip() for t in args.tools.split(",") if t.strip()]
+    for t in tools:
+        if t not in TOOLS:
+            sys.exit("unknown tool %s" % t)
+    base = B.load_cases(names)
+    runs = []
+    for c in base:
+        h = mean_edge(c["pts"], c["tris"])
+        runs.append(dict(c, h=h, hlabel="1"))
+        if c["name"] in fine:
+            runs.append(dict(c, h=h / 2.0, hlabel="0.5"))
+    work = args.work or tempfile.mkdtemp(prefix="tetmesher-bench-sized-")
+    os.makedirs(args.out, exist_ok=True)
+    log = os.path.join(work, "runs.log")
+    command = "/usr/bin/python3 scripts/benchmark_sized.py " + " ".join(shlex.quote(a) for a in sys.argv[1:])
+    started = datetime.datetime.now(datetime.timezone.utc)
+    rows = []
+    for case in runs:
+        h = case["h"]
+        for tool in tools:
+            cmd, cwd, reader, outs = tool_job(tool, case, h, work, args.tetmesher)
+            walls, rsss = [], []
+            rc, msg = None, ""
+            for k in range(max(1, args.repeat)):
+                for o in outs:
+                    if os.path.exists(o):
+                        os.remove(o)
+                rc, wall, rss, msg = B.run_timed(cmd, args.timeout, cwd, log)
+                walls.append(wall)
+                if rss is not None:
+                    rsss.append(rss)
+                if rc != 0 or wall > args.slow:
+                    break
+            row = dict(case=case["name"], h_factor=case["hlabel"], h=h, triangles=len(case["tris"]),
+                       tool=tool, rc=rc, runs=len(walls), time_s=statistics.median(walls),
+                       rss_mb=(max(rsss) / 1024.0 if rsss else None),
+                       command=" ".join(shlex.quote(os.path.relpath(x, ROOT) if os.path.isabs(x) and
+                                                    x.startswith(ROOT) else x) for x in cmd))
+            present = rc == 0 and all(os.path.exists(o) for o in outs)
+            err = ""
+            if present:
+                try:
+                    pts_out, tets = reader()
+                    res = B.analyse(case, pts_out, tets)
+                    res.pop("Q", None)
+                    row.update(res)
+                    if len(tets):
+                        row.update(edge_stats(pts_out, tets, case, h))
+                except Exception as e:
+                    err = "reading/analysing the output failed: %r" % (e,)
+                    present = False
+            elif rc == "timeout":
+                err = "time-out after %g s" % args.timeout
+            else:
+                lines = [l for l in msg.strip().split("\n") if l.strip()]
+                errl = [l for l in lines if l.startswith("Error")] or \
+                    [l for l in lines if "rror" in l or "ERROR" in l or "failed" in l.lower()]
+                err = "rc %s: %s" % (rc, (errl[0] if errl else (lines[-1] if lines else "no output")).strip()[:200])
+            row["success"] = "yes" if present and row.get("tets", 0) > 0 else "no"
+            if present and row.get("tets", 0) == 0 and not err:
+                err = "no tetrahedra in the output"
+            row["error"] = err
+            if row["success"] == "yes":
+                row["tets_per_s"] = row["tets"] / row["time_s"]
+            rows.append(row)
+            print("%-15s h%-4s %-14s %-4s %8.3fs %8s tets bnd %-3s bSt %-5s Qmin %6s dih %6s edges %6s %s" % (
+                case["name"], case["hlabel"], tool, row["success"], row["time_s"], row.get("tets", ""),
+                row.get("boundary_kept", "-"), row.get("steiner_on_boundary", ""),
+                B.fmt(row.get("q_min"), ".3f"), B.fmt(row.get("dih_min"), ".1f"),
+                B.fmt(row.get("edge_in_range"), ".1%"), err), flush=True)
+    finished = datetime.datetime.now(datetime.timezone.utc)
+    ref = {(r["case"], r["h_factor"]): r for r in rows if r["tool"] == "tetmesher" and r["success"] == "yes"}
+    for r in rows:
+        m = ref.get((r["case"], r["h_factor"]))
+        if m and r["success"] == "yes" and r["tool"] != "tetmesher":
+            r["time_ratio"] = r["time_s"] / m["time_s"]
+            r["tets_ratio"] = r["tets"] / m["tets"]
+            r["rate_ratio"] = r["tets_per_s"] / m["tets_per_s"]
+    write_outputs(args, rows, tools, command, started, finished)
+    print("results in %s (scratch: %s)" % (args.out, work))
+
+
+COLS = ["case", "h_factor", "h", "triangles", "tool", "success", "rc", "runs", "time_s", "time_ratio",
+        "rss_mb", "tets", "tets_ratio", "tets_per_s", "rate_ratio", "points", "steiner",
+        "steiner_on_boundary", "input_points_lost", "boundary_kept", "tri_missing", "tri_wrong_mult",
+        "extra_boundary_faces", "nonmanifold_faces", "q_min", "q_mean", "q_lt03", "dih_min", "dih_max",
+        "flat_tets", "vol_relerr", "edges", "edge_in_range", "inner_edge_in_range", "edge_len_median",
+        "command", "error"]
+
+
+def write_outputs(args, rows, tools, command, started, finished):
+    with open(os.path.join(args.out, args.name + ".csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=COLS, extrasaction="ignore")
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: ("%.6g" % v if isinstance(v, float) else v) for k, v in r.items()})
+    v = B.versions(args.tetmesher)
+    fmt = B.fmt
+    md = ["# TetMesher side-by-side benchmark, mode *sized*: the full pipeline at a constant h\n"]
+    md.append("- date: %s (UTC), %.0f s in all" % (started.strftime("%Y-%m-%d %H:%M"),
+                                                 (finished - started).total_seconds()))
+    md.append("- machine: %s; load average at the end %s (the machine is shared with other "
+              "engineers' builds: wall times are noisy, compare ratios within a case)"
+              % (B.machine(), " ".join("%.2f" % x for x in os.getloadavg())))
+    md.append("- command: `%s`" % command)
+    md.append("- versions: TetMesher git %s (Release), TetGen %s, Gmsh %s, VTK %s"
+              % (v["tetmesher"], v["tetgen"], v["gmsh"], v["vtk"]))
+    md.append("- h: constant per case, the mean length of the input's (unique) boundary edges "
+              "(*h x1*), and half of it (*h x0.5*) on %s." % ", ".join(
+                  sorted({r["case"] for r in rows if r["h_factor"] == "0.5"})))
+    md.append("- tools (exact command of every run in sized.csv, column *command*): "
+              "`tetmesher mesh IN -o OUT.vtu -q --size H` (*tetmesher*) and with "
+              "`--dihedral-target 20` (*tetmesher-dt20*); `tetgen -pq1.2a<V>` (*tetgen-q*), "
+              "`tetgen -pq1.2a<V>O9/7` (*tetgen-qO9*: optimisation level 9 = TetGen 1.5's maximum, "
+              "all operations; the default is O2/7; TetGen only optimises tets with a dihedral angle above "
+              "its `o/` bound, default 165 deg), `tetgen -pq1.2a<V>O9/7o/150` (*tetgen-qO9o150*: "
+              "bound 150 deg) and `tetgen -pYq1.2a<V>` (*tetgen-Yq*: boundary "
+              "not split) with V = h^3/(6 sqrt 2), the volume of the regular tet of edge h, on the "
+              ".off (.vtp converted with exact doubles); `gmsh in.geo -3 -nt 1 -clmin H -clmax H` "
+              "with Mesh.Algorithm3D = 1 (*gmsh-delaunay*) or 10 (*gmsh-hxt*) on the surface merged "
+              "as a discrete MSH 2.2 mesh (Gmsh keeps the discrete surface; Mesh.Optimize=1 default).")
+    md.append("- time: wall time of the whole process (read, mesh, write), median of up to %d runs "
+              "(1 run if slower than %g s); time-out %g s. *tets/s* = tets / wall time; *rate x TM* "
+              "= the tool's tets/s / TetMesher's (default run, same case and h)."
+              % (args.repeat, args.slow, args.timeout))
+    md.append("- checks (ours, on the output files, as in corpus.md): *bnd* = boundary kept exactly "
+              "(every input triangle a face of the output, every output boundary face an input "
+              "triangle, no Steiner point on the input surface); *bSt* = Steiner points on the "
+              "boundary. Q = 2 sqrt(6) r_in/l_max; *Q<0.3* share of tets; dihedral angles in degrees; "
+              "*e∈h* = share of all mesh edges with length in [0.7, 1.42]·h, *ie∈h* = the same for "
+              "the edges not on an input triangle.")
+    md.append("")
+    md.append("## Per case\n")
+    md.append("| case | h | tool | ok | time s | tets | tets/s | rate x TM | tets x TM | bnd | bSt | "
+              "Q min | Q mean | Q<0.3 | dih min | dih max | e∈h | ie∈h | note |")
+    md.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        ok = r["success"] == "yes"
+        md.append("| %s | x%s = %.4g | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            r["case"], r["h_factor"], r["h"], r["tool"], r["success"],
+            "timeout" if r["rc"] == "timeout" else fmt(r["time_s"], ".3f"),
+            r.get("tets", "") if ok else "", fmt(r.get("tets_per_s"), ".3g") if ok else "",
+            fmt(r.get("rate_ratio"), ".2f"), fmt(r.get("tets_ratio"), ".2f"),
+            r.get("boundary_kept", "") if ok else "", r.get("steiner_on_boundary", "") if ok else "",
+            fmt(r.get("q_min"), ".3f"), fmt(r.get("q_mean"), ".3f"), fmt(r.get("q_lt03"), ".1%"),
+            fmt(r.get("dih_min"), ".1f"), fmt(r.get("dih_max"), ".1f"),
+            fmt(r.get("edge_in_range"), ".1%"), fmt(r.get("inner_edge_in_range"), ".1%"),
+            r["error"].replace("|", "/")))
+    md.append("")
+    md.append("## Summary per tool (medians over the runs that succeeded)\n")
+    md.append("| tool | success | boundary kept | total time s | median rate x TM | median Q min | "
+              "median Q mean | median Q<0.3 | median dih min | median dih max | median e∈h |")
+    md.append("|---|---|---|---|---|---|---|---|---|---|---|")
+    for t in tools:
+        rs = [r for r in rows if r["tool"] == t]
+        ok = [r for r in rs if r["success"] == "yes"]
+        kept = [r for r in ok if r.get("boundary_kept") == "yes"]
+
+        def med(k, spec):
+            xs = [r[k] for r in ok if r.get(k) is not None]
+            return fmt(statistics.median(xs), spec) if xs else ""
+        md.append("| %s | %d/%d | %d/%d | %.1f | %s | %s | %s | %s | %s | %s | %s |" % (
+            t, len(ok), len(rs), len(kept), len(rs), sum(r["time_s"] for r in rs),
+            med("rate_ratio", ".2f"), med("q_min", ".3f"), med("q_mean", ".3f"), med("q_lt03", ".2%"),
+            med("dih_min", ".1f"), med("dih_max", ".1f"), med("edge_in_range", ".1%")))
+    md.append("")
+    with open(os.path.join(args.out, args.name + ".md"), "w") as f:
+        f.write("\n".join(md) + "\n")
+
+
+if __name__ == "__main__":
+    main()
