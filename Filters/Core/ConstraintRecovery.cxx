@@ -83,6 +83,9 @@ FlipCost memoized(const FlipCost& base)
   return c;
 }
 
+// Cost-neutral moves tried by the one-move lookahead of a stuck flip search.
+constexpr std::size_t kMaxNeutral = 48;
+
 struct WorkspaceDeleter
 {
   void operator()(InsertionWorkspace* w) const { destroyInsertionWorkspace(w); }
@@ -526,7 +529,21 @@ int Recovery::findMoves(VertexId seed,
   {
     int gain = candidate.oldCost - candidate.newCost;
     if (gain == 0 && neutral)
-      neutral->push_back(candidate);
+    {
+      // Keep only what lookahead tries: the kMaxNeutral best shaped, earlier first among
+      // equals (= a stable sort by decreasing quality, truncated), without copying the rest.
+      std::vector<FlipCandidate>& list = *neutral;
+      std::size_t pos = list.size();
+      while (pos > 0 && list[pos - 1].minQuality < candidate.minQuality)
+        --pos;
+      if (pos < kMaxNeutral)
+      {
+        if (list.size() < kMaxNeutral)
+          list.emplace_back();
+        std::rotate(list.begin() + pos, list.end() - 1, list.end());
+        list[pos] = candidate;
+      }
+    }
     if (gain > bestGain || (gain == bestGain && gain > 0 && candidate.minQuality > best.minQuality))
     {
       bestGain = gain;
@@ -564,11 +581,12 @@ bool Recovery::lookahead(VertexId seed, const FlipCost& cost, std::vector<FlipCa
 {
   // Try the neutral moves, best shaped first; keep one only if it enables a strictly
   // improving move (so the pair lowers the measure and the search still terminates).
+  // (findMoves keeps them sorted that way and at most kMaxNeutral.)
   std::stable_sort(neutral.begin(),
     neutral.end(),
     [](const FlipCandidate& a, const FlipCandidate& b) { return a.minQuality > b.minQuality; });
-  if (neutral.size() > 48)
-    neutral.resize(48);
+  if (neutral.size() > kMaxNeutral)
+    neutral.resize(kMaxNeutral);
   std::vector<TetId> created, pipe, star;
   FlipCandidate next;
   bool nextIsFlip23 = false;
