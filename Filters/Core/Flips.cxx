@@ -102,8 +102,9 @@ bool edgeRemovalCandidate(const TetMesh& mesh,
   FlipCandidate& out,
   int maxRing)
 {
-  std::vector<TetId> shell;
-  std::vector<VertexId> ring;
+  // Scratch reused between calls (this runs for every edge of every flip search).
+  thread_local std::vector<TetId> shell;
+  thread_local std::vector<VertexId> ring;
   if (!edgeShell(mesh, t, p, q, shell, ring))
     return false;
   const int n = static_cast<int>(ring.size());
@@ -130,7 +131,8 @@ bool edgeRemovalCandidate(const TetMesh& mesh,
   };
   auto better = [](int c, double qual, const Score& s)
   { return !s.valid() || c < s.cost || (c == s.cost && qual > s.quality); };
-  std::vector<Score> best(static_cast<std::size_t>(n) * n);
+  thread_local std::vector<Score> best;
+  best.assign(static_cast<std::size_t>(n) * n, Score());
   auto at = [&](int i, int k) -> Score& { return best[static_cast<std::size_t>(i) * n + k]; };
   for (int span = 2; span < n; ++span)
   {
@@ -182,7 +184,8 @@ bool edgeRemovalCandidate(const TetMesh& mesh,
   out.newCost = root.cost;
   out.minQuality = root.quality;
   out.newTets.clear();
-  std::vector<std::pair<int, int>> stack = { { 0, n - 1 } };
+  thread_local std::vector<std::pair<int, int>> stack;
+  stack.assign(1, { 0, n - 1 });
   while (!stack.empty())
   {
     auto [i, k] = stack.back();
