@@ -33,6 +33,62 @@ struct TupleHash
   }
 };
 
+// Open-addressing map from a vertex tuple to a small int (the memo of one flip search): one
+// allocation per growth instead of one per entry.
+template<typename Key>
+class FlatMemo
+{
+public:
+  // The cached value of k (values are non-negative counts), or -1.
+  int find(const Key& k) const
+  {
+    if (slots_.empty())
+      return -1;
+    std::size_t mask = slots_.size() - 1;
+    for (std::size_t i = TupleHash()(k) & mask;; i = (i + 1) & mask)
+    {
+      if (!slots_[i].used)
+        return -1;
+      if (slots_[i].key == k)
+        return slots_[i].value;
+    }
+  }
+  void store(const Key& k, int value)
+  {
+    if (2 * (size_ + 1) > slots_.size())
+    {
+      std::vector<Slot> old(std::max<std::size_t>(64, 2 * slots_.size()));
+      old.swap(slots_);
+      size_ = 0;
+      for (const Slot& s : old)
+      {
+        if (s.used)
+          insert(s.key, s.value);
+      }
+    }
+    insert(k, value);
+  }
+
+private:
+  struct Slot
+  {
+    Key key;
+    int value = 0;
+    bool used = false;
+  };
+  void insert(const Key& k, int value)
+  {
+    std::size_t mask = slots_.size() - 1;
+    std::size_t i = TupleHash()(k) & mask;
+    while (slots_[i].used)
+      i = (i + 1) & mask;
+    slots_[i] = { k, value, true };
+    ++size_;
+  }
+  std::vector<Slot> slots_;
+  std::size_t size_ = 0;
+};
+
 // The same measure, each exact test run once per (unordered) tet, face or edge: a flip search
 // prices the same entities again and again (every move rescans its pipe, every edge removal
 // prices all ring triangulations). All three tests are symmetric in their vertices.
@@ -40,44 +96,50 @@ FlipCost memoized(const FlipCost& base)
 {
   struct Caches
   {
-    std::unordered_map<std::array<VertexId, 4>, int, TupleHash> tets;
-    std::unordered_map<std::array<VertexId, 3>, int, TupleHash> faces;
-    std::unordered_map<std::uint64_t, int> edges;
+    FlatMemo<std::array<VertexId, 4>> tets;
+    FlatMemo<std::array<VertexId, 3>> faces;
+    FlatMemo<std::array<VertexId, 2>> edges;
   };
   auto caches = std::make_shared<Caches>();
+  FlatMemo<std::array<VertexId, 4>>* tets = &caches->tets;
+  FlatMemo<std::array<VertexId, 3>>* faces = &caches->faces;
+  FlatMemo<std::array<VertexId, 2>>* edges = &caches->edges;
   FlipCost c;
   if (base.tet)
-    c.tet = [caches, f = base.tet](const TetVertices& t)
+    c.tet = [caches, tets, f = base.tet](const TetVertices& t)
     {
       TetVertices k = t;
       std::sort(k.begin(), k.end());
-      auto it = caches->tets.find(k);
-      if (it != caches->tets.end())
-        return it->second;
-      int value = f(t);
-      caches->tets.emplace(k, value);
+      int value = tets->find(k);
+      if (value < 0)
+      {
+        value = f(t);
+        tets->store(k, value);
+      }
       return value;
     };
   if (base.face)
-    c.face = [caches, f = base.face](VertexId x, VertexId y, VertexId z)
+    c.face = [caches, faces, f = base.face](VertexId x, VertexId y, VertexId z)
     {
       auto k = sortedTriangle(x, y, z);
-      auto it = caches->faces.find(k);
-      if (it != caches->faces.end())
-        return it->second;
-      int value = f(x, y, z);
-      caches->faces.emplace(k, value);
+      int value = faces->find(k);
+      if (value < 0)
+      {
+        value = f(x, y, z);
+        faces->store(k, value);
+      }
       return value;
     };
   if (base.edge)
-    c.edge = [caches, f = base.edge](VertexId u, VertexId v)
+    c.edge = [caches, edges, f = base.edge](VertexId u, VertexId v)
     {
-      std::uint64_t k = edgeKey(u, v);
-      auto it = caches->edges.find(k);
-      if (it != caches->edges.end())
-        return it->second;
-      int value = f(u, v);
-      caches->edges.emplace(k, value);
+      std::array<VertexId, 2> k = { std::min(u, v), std::max(u, v) };
+      int value = edges->find(k);
+      if (value < 0)
+      {
+        value = f(u, v);
+        edges->store(k, value);
+      }
       return value;
     };
   return c;
