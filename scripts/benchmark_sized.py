@@ -154,6 +154,8 @@ def main():
     log = os.path.join(work, "runs.log")
     command = "/usr/bin/python3 scripts/benchmark_sized.py " + " ".join(shlex.quote(a) for a in sys.argv[1:])
     started = datetime.datetime.now(datetime.timezone.utc)
+    # versions before the runs: colleagues commit while it runs, and the binary is what counts
+    args.versions = B.versions(args.tetmesher)
     rows = []
     for case in runs:
         h = case["h"]
@@ -234,7 +236,7 @@ def write_outputs(args, rows, tools, command, started, finished):
         w.writeheader()
         for r in rows:
             w.writerow({k: ("%.6g" % v if isinstance(v, float) else v) for k, v in r.items()})
-    v = B.versions(args.tetmesher)
+    v = args.versions
     fmt = B.fmt
     md = ["# TetMesher side-by-side benchmark, mode *sized*: the full pipeline at a constant h\n"]
     md.append("- date: %s (UTC), %.0f s in all" % (started.strftime("%Y-%m-%d %H:%M"),
@@ -242,8 +244,9 @@ def write_outputs(args, rows, tools, command, started, finished):
     md.append("- machine: %s; load average at the end %s (the machine is shared with other "
               "engineers' builds: wall times are noisy, compare ratios within a case)"
               % (B.machine(), " ".join("%.2f" % x for x in os.getloadavg())))
-    md.append("- command: `%s`" % command)
-    md.append("- versions: TetMesher git %s (Release), TetGen %s, Gmsh %s, VTK %s"
+    md.append("- command: `%s` (`bash scripts/benchmark.sh --mode sized ...` builds the CLI and runs "
+              "this)" % command)
+    md.append("- versions: TetMesher git %s (Release; the tree when the run started), TetGen %s, Gmsh %s, VTK %s"
               % (v["tetmesher"], v["tetgen"], v["gmsh"], v["vtk"]))
     md.append("- h: constant per case, the mean length of the input's (unique) boundary edges "
               "(*h x1*), and half of it (*h x0.5*) on %s." % ", ".join(
