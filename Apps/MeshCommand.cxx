@@ -55,6 +55,7 @@ options:
   --stats               print the quality summary of the result
   --holes               enclosed shells are holes instead of regions of their own
   --max-steiner N       budget of recovery Steiner points (default 100 + 4 per triangle)
+  --time-limit S        stop with an error after S seconds (default: no limit)
   --no-check            skip the input surface checks (faster on known-good surfaces)
   -q, --quiet           no progress bar
   -h, --help            this text
@@ -91,8 +92,8 @@ int RunMesh(int argc, char* argv[])
   bool stats = false, holes = false, check = true, quiet = false, boundaryOnly = false,
        optimize = true;
   int maxSteiner = -1, passes = 3;
-  double dihedralTarget = 0, size = 0, sizeScale = 1, minSize = 0, maxSize = 0, gradation = 1.5,
-         qualityTarget = 0.3;
+  double timeLimit = 0, dihedralTarget = 0, size = 0, sizeScale = 1, minSize = 0, maxSize = 0,
+         gradation = 1.5, qualityTarget = 0.3;
   std::string sizeArray, background, backgroundArray = "h";
   // Parses the number after option argv[i]; false (and a message) when it is not one.
   auto number = [&](int& i, double low, double& value)
@@ -132,7 +133,7 @@ int RunMesh(int argc, char* argv[])
     else if (i + 1 < argc &&
       (arg == "--size" || arg == "--size-scale" || arg == "--min-size" || arg == "--max-size" ||
         arg == "--gradation" || arg == "--quality-target" || arg == "--passes" ||
-        arg == "--dihedral-target"))
+        arg == "--dihedral-target" || arg == "--time-limit"))
     {
       double value = 0;
       if (!number(i, arg == "--size" || arg == "--size-scale" ? 1e-300 : 0.0, value))
@@ -147,6 +148,8 @@ int RunMesh(int argc, char* argv[])
         maxSize = value;
       else if (arg == "--gradation")
         gradation = value;
+      else if (arg == "--time-limit")
+        timeLimit = value;
       else if (arg == "--dihedral-target")
         dihedralTarget = std::min(value, 70.0);
       else if (arg == "--quality-target")
@@ -229,6 +232,7 @@ int RunMesh(int argc, char* argv[])
     mesher->SetOptimizationPasses(passes);
     mesher->SetQualityTarget(qualityTarget);
     mesher->SetDihedralTarget(dihedralTarget);
+    mesher->SetTimeLimit(timeLimit);
     if (!sizeArray.empty())
       mesher->SetSizeArrayName(sizeArray.c_str());
     vtkSmartPointer<vtkDataSet> space;

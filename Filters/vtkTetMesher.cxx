@@ -31,6 +31,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -256,6 +257,7 @@ void vtkTetMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "QualityTarget: " << this->QualityTarget << "\n";
   os << indent << "QualityMeasure: " << this->QualityMeasure << "\n";
   os << indent << "DihedralTarget: " << this->DihedralTarget << "\n";
+  os << indent << "TimeLimit: " << this->TimeLimit << "\n";
 }
 
 vtkTable* vtkTetMesher::GetHistogramOutput()
@@ -469,19 +471,36 @@ int vtkTetMesher::RequestData(vtkInformation*,
   options.optimization.measure = this->QualityMeasure == MIN_DIHEDRAL
     ? tetmesher::QualityMeasure::MinDihedral
     : tetmesher::QualityMeasure::PaperQ;
+  options.boundary.maxSeconds = this->TimeLimit;
+  const auto start = std::chrono::steady_clock::now();
+  bool outOfTime = false;
   tetmesher::VolumeMeshResult result = tetmesher::meshVolume(coords.data(),
     static_cast<std::int32_t>(pointCount),
     triangles.data(),
     triangleCount,
     options,
-    [this](double progress)
+    [this, start, &outOfTime](double progress)
     {
       this->UpdateProgress(0.05 + 0.85 * progress);
+      if (this->TimeLimit > 0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
+          this->TimeLimit)
+      {
+        outOfTime = true;
+        return false;
+      }
       return !this->GetAbortExecute();
     });
   if (this->GetAbortExecute())
   {
     return fail("meshing was aborted");
+  }
+  if (outOfTime && !result.ok)
+  {
+    std::ostringstream message;
+    message << "meshing exceeded the time limit of " << this->TimeLimit << " s (" << result.error
+            << ")";
+    return fail(message.str());
   }
   if (!result.ok)
   {

@@ -189,6 +189,16 @@ public:
 
   ///@{
   /**
+   * Time limit in seconds for the whole run (0, the default: none). Past it the filter
+   * stops with an error saying which stage ran out of time (and, in boundary recovery, which
+   * input edge or triangle it was recovering); no partial mesh is returned.
+   */
+  vtkSetClampMacro(TimeLimit, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(TimeLimit, double);
+  ///@}
+
+  ///@{
+  /**
    * Check the input surface (exactly) before meshing. Default on. Off saves the time of
    * the self-intersection test on surfaces known to be good; a defect then surfaces as a
    * recovery failure, with a less precise message.
@@ -252,6 +262,7 @@ protected:
   int OptimizationPasses = 3;
   double QualityTarget = 0.3;
   double DihedralTarget = 0.0;
+  double TimeLimit = 0.0;
   int QualityMeasure = PAPER_Q;
   int MaximumSteinerPoints = -1;
   bool RemoveSteinerPoints = true;

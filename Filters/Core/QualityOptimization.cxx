@@ -182,8 +182,23 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
   ctx_.index.rebuild(ctx_.mesh);
 
   std::vector<TetId> created;
-  for (int pass = 0; pass < ctx_.options.passes; ++pass)
+  // Polled every few hundred moves, not only between passes, so that an abort or a caller's
+  // time budget takes effect within a pass (one pass can be long on poor surfaces).
+  bool stopped = false;
+  std::size_t pollCounter = 0;
+  int currentPass = 0;
+  auto stopRequested = [&]()
   {
+    if (stopped)
+      return true;
+    if (!progress || (++pollCounter & 255u) != 0)
+      return false;
+    stopped = !progress(static_cast<double>(currentPass) / ctx_.options.passes);
+    return stopped;
+  };
+  for (int pass = 0; pass < ctx_.options.passes && !stopped; ++pass)
+  {
+    currentPass = pass;
     res_.passesRun = pass + 1;
     int changes = 0;
     {
@@ -219,6 +234,8 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
       std::vector<char> seen(static_cast<std::size_t>(ctx_.mesh.vertexCount()), 0);
       for (VertexId v : vs)
       {
+        if (stopRequested())
+          break;
         if (seen[static_cast<std::size_t>(v)])
           continue;
         seen[static_cast<std::size_t>(v)] = 1;
@@ -236,7 +253,7 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
       for (const auto& b : collectBad())
         queue.push_back({ b.second, ctx_.verts(b.second) });
       std::size_t budget = 20 * queue.size() + 100;
-      while (!queue.empty() && budget-- > 0)
+      while (!queue.empty() && budget-- > 0 && !stopRequested())
       {
         auto [t, tv] = queue.front();
         queue.pop_front();
@@ -268,8 +285,9 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
       }
     }
 
-    if (progress && !progress(static_cast<double>(pass + 1) / ctx_.options.passes))
+    if (stopped || (progress && !progress(static_cast<double>(pass + 1) / ctx_.options.passes)))
     {
+      stopped = true;
       res_.ok = false;
       res_.error = "aborted";
       break;

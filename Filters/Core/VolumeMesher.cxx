@@ -3,6 +3,7 @@
 #include "MeshAssembly.h"
 #include "SizeField.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -95,9 +96,36 @@ VolumeMeshResult meshVolume(const double* points,
   {
     // Quality in units of h only when a size field was computed by refinement.
     const std::vector<double>* h = options.refine ? &size : nullptr;
-    result.optimizationStats =
-      optimizeMesh(mesh, options.optimization, h, subProgress(progress, refineEnd, 1.0));
-    if (!result.optimizationStats.ok)
+    const double before =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double budget = options.optimizationTimeFactor > 0
+      ? std::max(10.0, options.optimizationTimeFactor * before)
+      : 0;
+    const auto optimizationStart = std::chrono::steady_clock::now();
+    bool outOfTime = false, aborted = false;
+    auto stageProgress = subProgress(progress, refineEnd, 1.0);
+    result.optimizationStats = optimizeMesh(mesh,
+      options.optimization,
+      h,
+      [&](double p)
+      {
+        if (stageProgress && !stageProgress(p))
+        {
+          aborted = true;
+          return false;
+        }
+        if (budget > 0 &&
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - optimizationStart)
+              .count() > budget)
+        {
+          outOfTime = true;
+          return false;
+        }
+        return true;
+      });
+    // Stopped by its time budget, the optimiser leaves a valid mesh: keep it.
+    result.optimizationStoppedByTime = outOfTime && !aborted;
+    if (!result.optimizationStats.ok && !result.optimizationStoppedByTime)
     {
       result.error = "quality optimisation failed: " + result.optimizationStats.error;
       return result;

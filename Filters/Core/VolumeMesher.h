@@ -24,6 +24,11 @@ struct VolumeMeshOptions
   RefinementOptions refinement;
   bool optimize = true;
   OptimizationOptions optimization;
+  // Optimisation may take at most this multiple of the time of the stages before it (at
+  // least 10 s); then it stops, keeping the valid, partly improved mesh. <= 0: no
+  // bound. Tets it cannot fix (e.g. all four vertices on the surface) would otherwise make
+  // it spin on surfaces with poor triangles.
+  double optimizationTimeFactor = 20.0;
   // Wanted size h at each input point (raw, before refinement.size scaling); empty or
   // entries <= 0: the mean length of the boundary edges at that point.
   std::vector<double> inputSizes;
@@ -47,6 +52,7 @@ struct VolumeMeshResult
   MesherResult boundaryStats; // timings and counters of the boundary stage
   RefinementResult refinementStats;
   OptimizationResult optimizationStats;
+  bool optimizationStoppedByTime = false;
   double seconds = 0;
 };
 
