@@ -37,7 +37,8 @@ def d(name):
 
 
 # Usage.
-expect(["--help"], 0, out_has=["quality MESH"])
+expect(["--help"], 0, out_has=["quality MESH", "mesh SURFACE"])
+expect(["mesh", "--help"], 0, out_has=["--size H", "--background FILE", "--time-limit"])
 expect([], 2)
 expect(["frobnicate"], 2, err_has=["unknown command 'frobnicate'"])
 expect(["quality", "--help"], 0, out_has=["--size-array"])
@@ -99,6 +100,30 @@ expect(["quality", d("bad-no-tetrahedra.vtu")], 1, err_has=["no tetrahedra"])
 expect(["quality", d("bad-truncated.msh")], 1, err_has=["bad-truncated.msh: line 7"])
 expect(["quality", d("bad-index.ele")], 1, err_has=["bad-index.ele: line 2: vertex index out of range"])
 expect(["quality", d("make_test_meshes.py")], 1, err_has=["unknown file type '.py'"])
+
+# tetmesher mesh: good surfaces, options, limits.
+corpus = os.path.join(data, "..", "..", "Data")
+with tempfile.TemporaryDirectory() as tmp:
+    out = os.path.join(tmp, "sphere.vtu")
+    line = expect(["mesh", os.path.join(corpus, "sphere.off"), "-o", out, "-q"], 0,
+                  out_has=["tetrahedra", "1 region", "Q min"])
+    expect(["quality", out], 0, out_has=["tetrahedra"])
+    expect(["mesh", os.path.join(corpus, "sphere.off"), "-o", out, "-q", "--boundary-only"], 0,
+           out_has=["(0 interior, 0 Steiner)"])
+    expect(["mesh", os.path.join(corpus, "cube.vtp"), "-o", out, "-q", "--size", "0.2", "--stats"], 0,
+           out_has=["histogram of Q"])
+    expect(["mesh", os.path.join(corpus, "nested_spheres.vtp"), "-o", out, "-q", "--holes"], 0,
+           out_has=["1 region"])
+    expect(["mesh", os.path.join(corpus, "turbine.off"), "-o", out, "-q", "--time-limit", "0.05"], 1,
+           err_has=["exceeded the time limit of 0.05 s"])
+    expect(["mesh", os.path.join(corpus, "sphere.off"), "-o", out, "--size", "-1"], 2,
+           err_has=["--size wants a number"])
+    expect(["mesh", os.path.join(corpus, "sphere.off")], 2, err_has=["no output file"])
+    expect(["mesh", os.path.join(corpus, "sphere.off"), "-o", os.path.join(tmp, "x.stl")], 2,
+           err_has=["unknown output type '.stl'"])
+    expect(["mesh", os.path.join(corpus, "nosuch.stl"), "-o", out], 1, err_has=["no such file"])
+    expect(["mesh", os.path.join(corpus, "sphere.off"), "-o", out, "--size-array", "nope"], 1,
+           err_has=["'nope'"])
 
 if failures:
     print("\n\n".join(failures))
