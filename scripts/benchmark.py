@@ -465,7 +465,7 @@ def tool_job(tool, case, work, tetmesher):
     os.makedirs(d, exist_ok=True)
     if tool == "tetmesher":
         out = os.path.join(d, "out.vtu")
-        return [tetmesher, "mesh", src, "-o", out, "-q"], d, lambda: read_vtu(out), [out]
+        return [tetmesher, "mesh", src, "-o", out, "-q", "--boundary-only"], d, lambda: read_vtu(out), [out]
     if tool.startswith("tetgen"):
         # TetGen 1.5 reads .off itself; other formats are written as .off (exact doubles)
         inp = os.path.join(d, "in.off")
@@ -730,7 +730,7 @@ def write_outputs(args, rows, cases, tools, command, started, finished, qhist):
         command))
     md.append("- versions: TetMesher git %s (Release, build-bench), TetGen %s, %s, VTK %s"
               % (v["tetmesher"], v["tetgen"], "Gmsh " + v["gmsh"], v["vtk"]))
-    md.append("- tools: `tetmesher mesh IN -o OUT.vtu -q`; `tetgen -pY` and `tetgen -pYq1.2` (on .off; "
+    md.append("- tools: `tetmesher mesh IN -o OUT.vtu -q --boundary-only`; `tetgen -pY` and `tetgen -pYq1.2` (on .off; "
               ".vtp/.stl converted to .off with exact doubles); `gmsh in.geo -3 -nt 1` with "
               "Mesh.Algorithm3D=1 (Delaunay) / 10 (HXT) on the surface merged as a discrete MSH 2.2 mesh "
               "(one surface loop and volume per shell, enclosed shells as holes + own volume; Gmsh "
