@@ -112,7 +112,9 @@ void AddCellArray(const char* name, const std::vector<double>& values, vtkCellDa
   cellData->AddArray(array);
 }
 
-void AddScalar(const char* name, double value, vtkFieldData* fieldData)
+} // namespace
+
+void AddFieldScalar(vtkFieldData* fieldData, const char* name, double value)
 {
   vtkNew<vtkDoubleArray> array;
   array->SetName(name);
@@ -120,7 +122,6 @@ void AddScalar(const char* name, double value, vtkFieldData* fieldData)
   array->SetValue(0, value);
   fieldData->AddArray(array);
 }
-} // namespace
 
 void AttachQualityArrays(const TetQualityResult& result, vtkCellData* cellData)
 {
@@ -132,14 +133,14 @@ void AttachQualityArrays(const TetQualityResult& result, vtkCellData* cellData)
 
 void AttachQualitySummary(const QualitySummary& summary, vtkFieldData* fieldData)
 {
-  AddScalar("TetrahedronCount", static_cast<double>(summary.count), fieldData);
-  AddScalar("QualityMinimum", summary.minimum, fieldData);
-  AddScalar("QualityMean", summary.mean, fieldData);
-  AddScalar("QualityPercentile1", summary.percentile1, fieldData);
-  AddScalar("QualityShareBelow0.1", summary.shareBelow01, fieldData);
-  AddScalar("QualityShareBelow0.3", summary.shareBelow03, fieldData);
-  AddScalar("MinDihedralAngle", summary.minDihedral, fieldData);
-  AddScalar("MaxDihedralAngle", summary.maxDihedral, fieldData);
+  AddFieldScalar(fieldData, "TetrahedronCount", static_cast<double>(summary.count));
+  AddFieldScalar(fieldData, "QualityMinimum", summary.minimum);
+  AddFieldScalar(fieldData, "QualityMean", summary.mean);
+  AddFieldScalar(fieldData, "QualityPercentile1", summary.percentile1);
+  AddFieldScalar(fieldData, "QualityShareBelow0.1", summary.shareBelow01);
+  AddFieldScalar(fieldData, "QualityShareBelow0.3", summary.shareBelow03);
+  AddFieldScalar(fieldData, "MinDihedralAngle", summary.minDihedral);
+  AddFieldScalar(fieldData, "MaxDihedralAngle", summary.maxDihedral);
 }
 
 void FillHistogramTable(const std::vector<std::int64_t>& bins, vtkTable* table)

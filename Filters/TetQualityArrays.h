@@ -37,6 +37,9 @@ bool ComputeTetQuality(vtkDataSet* input,
   std::string& error);
 
 void AttachQualityArrays(const TetQualityResult& result, vtkCellData* cellData);
+// Adds a one-value double array `name` to field data (the summary numbers).
+void AddFieldScalar(vtkFieldData* fieldData, const char* name, double value);
+
 void AttachQualitySummary(const QualitySummary& summary, vtkFieldData* fieldData);
 void FillHistogramTable(const std::vector<std::int64_t>& bins, vtkTable* table);
 

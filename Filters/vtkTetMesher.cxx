@@ -210,14 +210,6 @@ private:
   std::vector<double> Weights;
 };
 
-void AddScalar(vtkFieldData* fieldData, const char* name, double value)
-{
-  vtkNew<vtkDoubleArray> array;
-  array->SetName(name);
-  array->SetNumberOfTuples(1);
-  array->SetValue(0, value);
-  fieldData->AddArray(array);
-}
 } // namespace
 
 vtkTetMesher::vtkTetMesher()
@@ -591,11 +583,12 @@ int vtkTetMesher::RequestData(vtkInformation*,
   tetmesher::vtkglue::AttachQualityArrays(quality, output->GetCellData());
   vtkFieldData* fieldData = output->GetFieldData();
   tetmesher::vtkglue::AttachQualitySummary(quality.Summary, fieldData);
-  AddScalar(fieldData, "SteinerPointCount", result.steinerPoints);
-  AddScalar(fieldData, "InteriorPointCount", result.interiorPoints);
-  AddScalar(fieldData, "RegionCount", result.regionCount);
-  AddScalar(fieldData, "TriangulatedPolygonCount", static_cast<double>(triangulatedPolygons));
-  AddScalar(fieldData, "MeshingSeconds", result.seconds);
+  tetmesher::vtkglue::AddFieldScalar(fieldData, "SteinerPointCount", result.steinerPoints);
+  tetmesher::vtkglue::AddFieldScalar(fieldData, "InteriorPointCount", result.interiorPoints);
+  tetmesher::vtkglue::AddFieldScalar(fieldData, "RegionCount", result.regionCount);
+  tetmesher::vtkglue::AddFieldScalar(
+    fieldData, "TriangulatedPolygonCount", static_cast<double>(triangulatedPolygons));
+  tetmesher::vtkglue::AddFieldScalar(fieldData, "MeshingSeconds", result.seconds);
   if (!result.vertexSize.empty())
   {
     vtkNew<vtkDoubleArray> h;
@@ -633,7 +626,7 @@ int vtkTetMesher::RequestData(vtkInformation*,
         counts->InsertNextValue(static_cast<vtkIdType>(n));
       }
       histogram->AddColumn(counts);
-      AddScalar(
+      tetmesher::vtkglue::AddFieldScalar(
         fieldData, "QualityMinimumBeforeOptimization", tetmesher::summarizeQuality(before).minimum);
     }
   }

@@ -18,6 +18,15 @@ struct FaceKeyHash
     return static_cast<std::size_t>(h ^ (h >> 31));
   }
 };
+// The vertex ids of face f of tet t, sorted: the key of the face whatever its orientation.
+std::array<VertexId, 3> sortedFace(const std::vector<std::int32_t>& tets, std::size_t t, int f)
+{
+  std::array<VertexId, 3> key;
+  for (int k = 0; k < 3; ++k)
+    key[static_cast<std::size_t>(k)] = tets[4 * t + static_cast<std::size_t>(kFaceVertices[f][k])];
+  std::sort(key.begin(), key.end());
+  return key;
+}
 } // namespace
 
 bool assembleRegionMesh(const std::vector<double>& points,
@@ -41,11 +50,7 @@ bool assembleRegionMesh(const std::vector<double>& points,
   {
     for (int f = 0; f < 4; ++f)
     {
-      std::array<VertexId, 3> key;
-      for (int k = 0; k < 3; ++k)
-        key[static_cast<std::size_t>(k)] =
-          tets[4 * t + static_cast<std::size_t>(kFaceVertices[f][k])];
-      std::sort(key.begin(), key.end());
+      const std::array<VertexId, 3> key = sortedFace(tets, t, f);
       const TetId tet = static_cast<TetId>(t);
       auto [it, inserted] = open.emplace(key, makeFaceRef(tet, f));
       if (inserted)
@@ -105,11 +110,7 @@ std::vector<std::int32_t> findTriangleFaces(const std::vector<std::int32_t>& tet
   {
     for (int f = 0; f < 4; ++f)
     {
-      std::array<VertexId, 3> key;
-      for (int k = 0; k < 3; ++k)
-        key[static_cast<std::size_t>(k)] =
-          tets[4 * t + static_cast<std::size_t>(kFaceVertices[f][k])];
-      std::sort(key.begin(), key.end());
+      const std::array<VertexId, 3> key = sortedFace(tets, t, f);
       auto found = index.find(key);
       if (found != index.end() && faces[static_cast<std::size_t>(found->second)] < 0)
         faces[static_cast<std::size_t>(found->second)] = makeFaceRef(static_cast<TetId>(t), f);
