@@ -447,6 +447,8 @@ int vtkTetMesher::RequestData(vtkInformation*,
   }
 
   // --- Mesh ------------------------------------------------------------------------------
+  // The surface was checked above (or the user chose not to): not twice.
+  options.boundary.validateInput = false;
   options.boundary.enclosedShellsAreHoles = this->EnclosedShellsAreHoles;
   options.boundary.maxSteinerPoints = this->MaximumSteinerPoints;
   options.boundary.removeSteinerPoints = this->RemoveSteinerPoints;

@@ -41,7 +41,11 @@ MesherResult meshSurface(const double* points,
   {
     // Refuse what recovery cannot mesh (self-intersections, coincident points, fins) with a
     // message naming the ids. Orientation does not matter to the mesher.
-    SurfaceDiagnosis diagnosis = diagnoseSurface(points, pointCount, triangles, triangleCount);
+    // Bounded: a triangle soup can have a quadratic number of intersecting pairs.
+    DiagnosisOptions diagnosisOptions;
+    diagnosisOptions.maxRecordsPerKind = 1000;
+    SurfaceDiagnosis diagnosis =
+      diagnoseSurface(points, pointCount, triangles, triangleCount, diagnosisOptions);
     SurfaceDiagnosis errors;
     for (const DefectRecord& d : diagnosis.defects)
     {
