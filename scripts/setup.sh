@@ -39,7 +39,10 @@ if [ ! -f "$stamp" ]; then
   echo "setup: unpacking python3-paraview into $PV_PREFIX"
   tmp="$(mktemp -d)"
   chmod 755 "$tmp"
-  (cd "$tmp" && apt-get download python3-paraview >/dev/null 2>&1)
+  if ! (cd "$tmp" && apt-get download python3-paraview >/dev/null 2>&1); then
+    $SUDO apt-get update -q # no package lists yet on this machine
+    (cd "$tmp" && apt-get download python3-paraview >/dev/null)
+  fi
   $SUDO rm -rf "$PV_PREFIX"
   $SUDO mkdir -p "$PV_PREFIX"
   $SUDO dpkg -x "$tmp"/python3-paraview_*.deb "$PV_PREFIX"
