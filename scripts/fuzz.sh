@@ -24,7 +24,7 @@ fi
 core_dir=$PWD/Filters/Core
 if [ -n "${FUZZ_REV:-}" ]; then
   rev=$(git rev-parse --verify "$FUZZ_REV^{commit}")
-  core_dir=$PWD/$build/core-src/Filters/Core
+  case "$build" in /*) core_dir=$build/core-src/Filters/Core ;; *) core_dir=$PWD/$build/core-src/Filters/Core ;; esac
   rm -rf "$build/core-src" && mkdir -p "$build/core-src"
   git archive "$rev" Filters/Core | tar -x -C "$build/core-src"
   echo "fuzz.sh: fuzzing Filters/Core of $rev"
