@@ -39,9 +39,18 @@ enum TetFlag : std::uint8_t
   kScratchBit3 = 1u << 7,
 };
 
-inline FaceRef makeFaceRef(TetId t, int f) { return 4 * t + f; }
-inline TetId faceTet(FaceRef r) { return r >> 2; }
-inline int faceIndex(FaceRef r) { return r & 3; }
+inline FaceRef makeFaceRef(TetId t, int f)
+{
+  return 4 * t + f;
+}
+inline TetId faceTet(FaceRef r)
+{
+  return r >> 2;
+}
+inline int faceIndex(FaceRef r)
+{
+  return r & 3;
+}
 
 struct TetMesh
 {
