@@ -83,15 +83,7 @@ bool findMultiFaceRemoval(const Context& ctx, TetId t, int f, LocalMove& out)
       const Sandwiched& F = faces[edges[k].first];
       int e = edges[k].second;
       TetVertices nt = { F.v[e], F.v[(e + 1) % 3], b, a };
-      double sc = -1;
-      if (ctx.positive(nt[0], nt[1], nt[2], nt[3]))
-      {
-        TetEval ev = ctx.eval(nt);
-        newMin.add(ev);
-        sc = ev.score;
-      }
-      else
-        valid = false;
+      const double sc = ctx.scoreCandidate(nt, newMin, valid);
       if (sc < worstScore)
       {
         worstScore = sc;

@@ -106,6 +106,19 @@ public:
   {
     return predicates::orient3d(P(a), P(b), P(c), P(d)) > 0;
   }
+  // A candidate tet of a move: its score, also folded into `worst`; or -1 when it is not
+  // positively oriented, which makes the whole move invalid.
+  double scoreCandidate(const TetVertices& t, WorstOf& worst, bool& valid) const
+  {
+    if (!positive(t[0], t[1], t[2], t[3]))
+    {
+      valid = false;
+      return -1;
+    }
+    TetEval ev = eval(t);
+    worst.add(ev);
+    return ev.score;
+  }
   TetVertices verts(TetId t) const
   {
     return { mesh.vertex(t, 0), mesh.vertex(t, 1), mesh.vertex(t, 2), mesh.vertex(t, 3) };

@@ -60,15 +60,7 @@ bool growCavity(Context& ctx, TetId t, VertexId xv, int maxCavity, LocalMove& ou
       TetVertices nt = { m.vertex(c, fv[0]), m.vertex(c, fv[1]), m.vertex(c, fv[2]), xv };
       for (int e = 0; e < 3; ++e)
         edges.push_back({ std::min(nt[e], nt[(e + 1) % 3]), std::max(nt[e], nt[(e + 1) % 3]) });
-      double sc = -1;
-      if (ctx.positive(nt[0], nt[1], nt[2], nt[3]))
-      {
-        TetEval ev = ctx.eval(nt);
-        newMin.add(ev);
-        sc = ev.score;
-      }
-      else
-        valid = false;
+      const double sc = ctx.scoreCandidate(nt, newMin, valid);
       if (sc < worstScore)
       {
         worstScore = sc;
