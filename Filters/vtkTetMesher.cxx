@@ -178,6 +178,10 @@ public:
       }
     }
     this->Data = data;
+    // FindCell's tolerance is a squared distance: relative to the dataset's size, so that a
+    // controlling space at 1e-12 or 1e12 behaves as one at unit scale.
+    const double length = data->GetLength();
+    this->Tolerance2 = length > 0 ? 1e-18 * length * length : 0.0;
     this->Weights.resize(static_cast<std::size_t>(std::max(data->GetMaxCellSize(), 1)));
     return "";
   }
@@ -188,7 +192,7 @@ public:
     double pcoords[3];
     int subId = 0;
     const vtkIdType cell = this->Data->FindCell(
-      point, nullptr, this->Cell, -1, 1e-12, subId, pcoords, this->Weights.data());
+      point, nullptr, this->Cell, -1, this->Tolerance2, subId, pcoords, this->Weights.data());
     if (cell >= 0)
     {
       this->Data->GetCellPoints(cell, this->Ids);
@@ -205,6 +209,7 @@ public:
 private:
   vtkDataSet* Data = nullptr;
   vtkDataArray* Sizes = nullptr;
+  double Tolerance2 = 0;
   vtkNew<vtkGenericCell> Cell;
   vtkNew<vtkIdList> Ids;
   std::vector<double> Weights;
