@@ -56,6 +56,8 @@ options:
   --holes               enclosed shells are holes instead of regions of their own
   --max-steiner N       budget of recovery Steiner points (default 100 + 4 per triangle)
   --time-limit S        stop with an error after S seconds (default: no limit)
+  --memory-limit MB     refuse a size field whose mesh is estimated above MB megabytes
+                        (default: the memory available; -1: no check)
   --no-check            skip the input surface checks (faster on known-good surfaces)
   -q, --quiet           no progress bar
   -h, --help            this text
@@ -92,8 +94,8 @@ int RunMesh(int argc, char* argv[])
   bool stats = false, holes = false, check = true, quiet = false, boundaryOnly = false,
        optimize = true;
   int maxSteiner = -1, passes = 3;
-  double timeLimit = 0, dihedralTarget = 0, size = 0, sizeScale = 1, minSize = 0, maxSize = 0,
-         gradation = 1.5, qualityTarget = 0.3;
+  double timeLimit = 0, memoryLimit = 0, dihedralTarget = 0, size = 0, sizeScale = 1, minSize = 0,
+         maxSize = 0, gradation = 1.5, qualityTarget = 0.3;
   std::string sizeArray, background, backgroundArray = "h";
   // Parses the number after option argv[i]; false (and a message) when it is not one.
   auto number = [&](int& i, double low, double& value)
@@ -133,10 +135,13 @@ int RunMesh(int argc, char* argv[])
     else if (i + 1 < argc &&
       (arg == "--size" || arg == "--size-scale" || arg == "--min-size" || arg == "--max-size" ||
         arg == "--gradation" || arg == "--quality-target" || arg == "--passes" ||
-        arg == "--dihedral-target" || arg == "--time-limit"))
+        arg == "--dihedral-target" || arg == "--time-limit" || arg == "--memory-limit"))
     {
       double value = 0;
-      if (!number(i, arg == "--size" || arg == "--size-scale" ? 1e-300 : 0.0, value))
+      const double low = arg == "--size" || arg == "--size-scale" ? 1e-300
+        : arg == "--memory-limit"                                 ? -1.0
+                                                                  : 0.0;
+      if (!number(i, low, value))
         return 2;
       if (arg == "--size")
         size = value;
@@ -150,6 +155,8 @@ int RunMesh(int argc, char* argv[])
         gradation = value;
       else if (arg == "--time-limit")
         timeLimit = value;
+      else if (arg == "--memory-limit")
+        memoryLimit = value;
       else if (arg == "--dihedral-target")
         dihedralTarget = std::min(value, 70.0);
       else if (arg == "--quality-target")
@@ -233,6 +240,7 @@ int RunMesh(int argc, char* argv[])
     mesher->SetQualityTarget(qualityTarget);
     mesher->SetDihedralTarget(dihedralTarget);
     mesher->SetTimeLimit(timeLimit);
+    mesher->SetMemoryLimit(memoryLimit);
     if (!sizeArray.empty())
       mesher->SetSizeArrayName(sizeArray.c_str());
     vtkSmartPointer<vtkDataSet> space;

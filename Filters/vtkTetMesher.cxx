@@ -1,5 +1,6 @@
 #include "vtkTetMesher.h"
 
+#include "MemoryBudget.h"
 #include "SurfaceDiagnosis.h"
 #include "TetQualityArrays.h"
 #include "VolumeMesher.h"
@@ -255,6 +256,7 @@ void vtkTetMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "QualityMeasure: " << this->QualityMeasure << "\n";
   os << indent << "DihedralTarget: " << this->DihedralTarget << "\n";
   os << indent << "TimeLimit: " << this->TimeLimit << "\n";
+  os << indent << "MemoryLimit: " << this->MemoryLimit << "\n";
 }
 
 vtkTable* vtkTetMesher::GetHistogramOutput()
@@ -471,6 +473,10 @@ int vtkTetMesher::RequestData(vtkInformation*,
     ? tetmesher::QualityMeasure::MinDihedral
     : tetmesher::QualityMeasure::PaperQ;
   options.boundary.maxSeconds = this->TimeLimit;
+  // MemoryLimit in MB; 0: what the machine has available now; < 0: no check.
+  options.refinement.memoryLimitBytes = this->MemoryLimit > 0 ? this->MemoryLimit * 1e6
+    : this->MemoryLimit == 0                                  ? tetmesher::availableMemoryBytes()
+                                                              : 0.0;
   const auto start = std::chrono::steady_clock::now();
   bool outOfTime = false;
   tetmesher::VolumeMeshResult result = tetmesher::meshVolume(coords.data(),

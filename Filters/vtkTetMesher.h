@@ -199,6 +199,17 @@ public:
 
   ///@{
   /**
+   * Memory limit in MB (10^6 bytes) for the refined mesh. Before inserting interior points
+   * the filter estimates the mesh the size field asks for (about 2 kB per point) and stops
+   * with an error naming the estimate when it exceeds the limit. 0, the default: the memory
+   * available on the machine when the filter runs; negative: no check.
+   */
+  vtkSetMacro(MemoryLimit, double);
+  vtkGetMacro(MemoryLimit, double);
+  ///@}
+
+  ///@{
+  /**
    * Check the input surface (exactly) before meshing. Default on. Off saves the time of
    * the self-intersection test on surfaces known to be good; a defect then surfaces as a
    * recovery failure, with a less precise message.
@@ -263,6 +274,7 @@ protected:
   double QualityTarget = 0.3;
   double DihedralTarget = 0.0;
   double TimeLimit = 0.0;
+  double MemoryLimit = 0.0;
   int QualityMeasure = PAPER_Q;
   int MaximumSteinerPoints = -1;
   bool RemoveSteinerPoints = true;

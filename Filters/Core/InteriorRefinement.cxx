@@ -2,6 +2,7 @@
 
 #include "Delaunay.h"
 #include "HilbertSort.h"
+#include "MemoryBudget.h"
 
 #include <algorithm>
 #include <chrono>
@@ -488,6 +489,10 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     }
     result.estimatedPoints = estimate;
   }
+  // Refuse, before inserting anything, a size field the machine cannot hold.
+  if (std::string tooLarge = checkMemoryBudget(result.estimatedPoints, options.memoryLimitBytes);
+      !tooLarge.empty())
+    return finish(false, tooLarge);
   for (VertexId v = 0; v < initialCount; ++v)
     for (int k = 0; k < 3; ++k)
     {

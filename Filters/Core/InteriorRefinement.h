@@ -32,6 +32,11 @@ struct RefinementOptions
   double splitJitter = 0.05;
   // Bound on the number of rounds (each round splits the edges too long at its start).
   int maxRounds = 200;
+  // Refuse (ok = false, before inserting any point) when the estimated memory of the refined
+  // mesh exceeds this many bytes (MemoryBudget.h); <= 0: no memory check. Meshes beyond the
+  // 32-bit indices (2^29 tets) are always refused. The VTK filter and the CLI pass the memory
+  // available on the machine.
+  double memoryLimitBytes = 0;
 };
 
 struct RefinementResult

@@ -1,5 +1,6 @@
 // The whole pipeline (boundary mesh -> interior points -> optimisation): the boundary stays
 // exact through every stage, sizes follow h, quality improves.
+#include "MemoryBudget.h"
 #include "MeshChecks.h"
 #include "SurfaceGenerators.h"
 #include "TetQuality.h"
@@ -169,4 +170,32 @@ TEST(VolumeMesher, CoordinatesFrom1eMinus12To1e12)
     expectMeshesLikeUnitScale(s, reference, 1e12, 0);
     expectMeshesLikeUnitScale(s, reference, 1e9, 1e12);
   }
+}
+
+// A size field whose mesh would not fit is refused before refinement inserts anything, with
+// the estimate and the limit in the message.
+TEST(VolumeMesher, SizeFieldBeyondTheMemoryLimitIsRefused)
+{
+  EXPECT_EQ(checkMemoryBudget(1e5, 1e9), "");
+  EXPECT_EQ(checkMemoryBudget(1e5, 0), ""); // no limit
+  const std::string tooMuch = checkMemoryBudget(1e6, 1e9);
+  EXPECT_NE(tooMuch.find("about 1e+06 interior points"), std::string::npos) << tooMuch;
+  EXPECT_NE(tooMuch.find("2 GB of memory"), std::string::npos) << tooMuch;
+  EXPECT_NE(tooMuch.find("more than the memory limit of 1 GB"), std::string::npos) << tooMuch;
+  // 2^29 tets is the index limit, with or without a memory limit.
+  EXPECT_NE(checkMemoryBudget(1e8, 0).find("tetrahedra a mesh can have"), std::string::npos);
+  EXPECT_GT(availableMemoryBytes(), 0.0);
+
+  Surface s = cube(4);
+  VolumeMeshOptions options;
+  const double h = 0.01; // about sqrt(2)/h^3 = 1.4e6 points in the unit cube: 2.8 GB
+  options.inputSizes.assign(static_cast<std::size_t>(s.pointCount()), h);
+  options.refinement.memoryLimitBytes = 1e9;
+  VolumeMeshResult v =
+    meshVolume(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), options);
+  EXPECT_FALSE(v.ok);
+  EXPECT_NE(v.error.find("more than the memory limit of 1 GB"), std::string::npos) << v.error;
+  EXPECT_EQ(v.refinementStats.insertedPoints, 0);
+  EXPECT_TRUE(v.tets.empty());
+  EXPECT_NEAR(v.refinementStats.estimatedPoints, std::sqrt(2.0) / (h * h * h), 0.01e6);
 }

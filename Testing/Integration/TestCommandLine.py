@@ -38,7 +38,7 @@ def d(name):
 
 # Usage.
 expect(["--help"], 0, out_has=["quality MESH", "mesh SURFACE"])
-expect(["mesh", "--help"], 0, out_has=["--size H", "--background FILE", "--time-limit"])
+expect(["mesh", "--help"], 0, out_has=["--size H", "--background FILE", "--time-limit", "--memory-limit"])
 expect([], 2)
 expect(["frobnicate"], 2, err_has=["unknown command 'frobnicate'"])
 expect(["quality", "--help"], 0, out_has=["--size-array"])
@@ -116,6 +116,20 @@ with tempfile.TemporaryDirectory() as tmp:
            out_has=["1 region"])
     expect(["mesh", os.path.join(corpus, "turbine.off"), "-o", out, "-q", "--time-limit", "0.05"], 1,
            err_has=["exceeded the time limit of 0.05 s"])
+    # A size field too fine for the memory is refused before any point is inserted: the cube
+    # at h = 0.02 is estimated at 1.77e5 points, 354 MB; no output file is written.
+    expect(["mesh", os.path.join(corpus, "cube.vtp"), "-o", out + ".mem.vtu", "-q", "--size", "0.02",
+            "--memory-limit", "100"], 1,
+           err_has=["about 1.77e+05 interior points", "354 MB of memory",
+                    "more than the memory limit of 100 MB"])
+    if os.path.exists(out + ".mem.vtu"):
+        failures.append("--memory-limit: an output file was written after the refusal")
+    # Beyond the 32-bit indices whatever the memory: h = 1e-5 in the unit cube.
+    expect(["mesh", os.path.join(corpus, "cube.vtp"), "-o", out, "-q", "--size", "1e-5",
+            "--memory-limit", "-1"], 1,
+           err_has=["about 1.41e+15 interior points", "tetrahedra a mesh can have"])
+    expect(["mesh", os.path.join(corpus, "sphere.off"), "-o", out, "--memory-limit", "-2"], 2,
+           err_has=["--memory-limit wants a number >= -1"])
     expect(["mesh", os.path.join(corpus, "sphere.off"), "-o", out, "--size", "-1"], 2,
            err_has=["--size wants a number"])
     expect(["mesh", os.path.join(corpus, "sphere.off")], 2, err_has=["no output file"])

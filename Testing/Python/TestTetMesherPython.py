@@ -185,6 +185,17 @@ else:
     if mesher.GetLastError().find("open edge") < 0:
         failures.append("GetLastError() does not name the open edges")
 
+# A size field beyond the memory limit: refused before refinement, with the estimate named;
+# no mesh.
+points, triangles = read_surface(os.path.join(data, "cube.vtp"))
+mesher, errors = mesh(points, triangles, MemoryLimit=10.0, SizeScale=0.05)
+if not errors or "more than the memory limit of 10 MB" not in mesher.GetLastError():
+    failures.append(f"MemoryLimit 10 MB: expected a refusal naming the limit, got {errors}")
+elif mesher.GetOutput().GetNumberOfCells() != 0:
+    failures.append("MemoryLimit: a mesh was returned with the error")
+else:
+    print("memory limit:", mesher.GetLastError()[:140])
+
 if failures:
     print("\n".join(failures))
     sys.exit(1)
