@@ -11,92 +11,148 @@ namespace tetmesher
 namespace
 {
 
-// Per-vertex scratch marks (stamps) for collecting the neighbours of a vertex in linear time.
-struct NeighbourMarks
+// The star of the vertex being removed, kept up to date through the edge removals: its tets,
+// its neighbours in first-seen order, and for each neighbour a star tet having the edge.
+// Recomputing the star after every removed edge costs O(degree^2) per vertex, and a Steiner
+// point in a nearly co-spherical mesh (vtkSphereSource's spheres: every point on one sphere)
+// can have thousands of neighbours.
+struct VertexStar
 {
-  std::vector<std::uint32_t> stamp;
-  std::uint32_t epoch = 0;
+  std::vector<TetId> tets;
+  std::vector<std::int32_t> position; // per tet id: its index in tets, -1 when not in it
+  std::vector<VertexId> neighbours;   // live and removed ones (see neighbourTet)
+  std::vector<TetId> neighbourTet;    // per vertex id: a star tet with the edge, -1: none
+
+  void add(TetId t)
+  {
+    if (position.size() <= static_cast<std::size_t>(t))
+      position.resize(static_cast<std::size_t>(t) + 1, -1);
+    position[t] = static_cast<std::int32_t>(tets.size());
+    tets.push_back(t);
+  }
+  void remove(TetId t)
+  {
+    const std::int32_t i = position[t];
+    position[t] = -1;
+    const TetId last = tets.back();
+    tets.pop_back();
+    if (last != t)
+    {
+      tets[static_cast<std::size_t>(i)] = last;
+      position[last] = i;
+    }
+  }
+  // Records the neighbours of v in tet t (a star tet), pointing them at t.
+  void noteNeighbours(const TetMesh& mesh, TetId t, VertexId v)
+  {
+    for (int i = 0; i < 4; ++i)
+    {
+      const VertexId w = mesh.vertex(t, i);
+      if (w == v)
+        continue;
+      if (neighbourTet[w] < 0)
+      {
+        if (std::find(neighbours.begin(), neighbours.end(), w) == neighbours.end())
+          neighbours.push_back(w);
+      }
+      neighbourTet[w] = t;
+    }
+  }
 };
 
-bool removeVertex(TetMesh& mesh, VertexTetIndex& index, VertexId v, NeighbourMarks& marks)
+bool removeVertex(TetMesh& mesh, VertexTetIndex& index, VertexId v, VertexStar& star)
 {
-  std::vector<TetId> star;
-  std::vector<TetId> firstTet; // per neighbour: the first star tet having it
-  FlipCost noCost;
-  if (marks.stamp.size() < static_cast<std::size_t>(mesh.vertexCount()))
-    marks.stamp.resize(mesh.vertexCount(), 0);
-  // Each successful edge removal lowers the degree of v by one, so this loop is bounded.
-  while (true)
+  std::vector<TetId> initial;
+  vertexStar(mesh, index, v, initial);
+  if (initial.empty())
+    return false;
+  star.tets.clear();
+  star.neighbours.clear();
+  if (star.neighbourTet.size() < static_cast<std::size_t>(mesh.vertexCount()))
+    star.neighbourTet.resize(static_cast<std::size_t>(mesh.vertexCount()), -1);
+  for (TetId t : initial)
   {
-    vertexStar(mesh, index, v, star);
-    if (star.empty())
-      return false;
-    std::vector<VertexId> neighbours;
-    firstTet.clear();
-    if (++marks.epoch == 0)
+    star.add(t);
+    // First star tet per neighbour, as the search order: keep the earliest tet.
+    for (int i = 0; i < 4; ++i)
     {
-      std::fill(marks.stamp.begin(), marks.stamp.end(), 0u);
-      marks.epoch = 1;
-    }
-    for (TetId t : star)
-    {
-      for (int i = 0; i < 4; ++i)
+      const VertexId w = mesh.vertex(t, i);
+      if (w != v && star.neighbourTet[w] < 0)
       {
-        VertexId w = mesh.vertex(t, i);
-        if (w != v && marks.stamp[w] != marks.epoch)
-        {
-          marks.stamp[w] = marks.epoch;
-          neighbours.push_back(w);
-          firstTet.push_back(t);
-        }
+        star.neighbourTet[w] = t;
+        star.neighbours.push_back(w);
       }
     }
-    if (neighbours.size() == 4 && star.size() == 4)
+  }
+  auto clearNeighbourMarks = [&]()
+  {
+    for (VertexId w : star.neighbours)
+      star.neighbourTet[w] = -1;
+    for (TetId t : star.tets)
+      star.position[t] = -1;
+  };
+  std::size_t live = star.neighbours.size(); // neighbours whose edge to v is still there
+  FlipCost noCost;
+  FlipCandidate candidate;
+  std::vector<TetId> created;
+  // Passes over the neighbours: each successful edge removal takes one neighbour away for good
+  // (edge removal never creates an edge at v), so the passes end; a pass without one ends the
+  // attempt, as an unchanged neighbourhood would fail the same way again.
+  for (bool progress = true; progress;)
+  {
+    progress = false;
+    for (std::size_t k = 0; k < star.neighbours.size(); ++k)
     {
-      // 4-1 flip: v lies inside the tet of its four neighbours.
-      TetId t = star[0];
-      int iv = localIndex(mesh, t, v);
-      const int* fv = kFaceVertices[iv];
-      VertexId x = mesh.vertex(t, fv[0]), y = mesh.vertex(t, fv[1]), z = mesh.vertex(t, fv[2]);
-      VertexId w = -1;
-      for (VertexId u : neighbours)
+      if (live == 4 && star.tets.size() == 4)
       {
-        if (u != x && u != y && u != z)
-          w = u;
+        // 4-1 flip: v lies inside the tet of its four neighbours.
+        const TetId t = star.tets[0];
+        const int iv = localIndex(mesh, t, v);
+        const int* fv = kFaceVertices[iv];
+        const VertexId x = mesh.vertex(t, fv[0]), y = mesh.vertex(t, fv[1]),
+                       z = mesh.vertex(t, fv[2]);
+        VertexId u = -1;
+        for (VertexId w : star.neighbours)
+          if (star.neighbourTet[w] >= 0 && w != x && w != y && w != z)
+            u = w;
+        bool possible =
+          predicates::orient3d(mesh.point(x), mesh.point(y), mesh.point(z), mesh.point(u)) > 0;
+        for (TetId s : star.tets)
+          for (int f = 0; f < 4 && possible; ++f)
+            if (mesh.vertex(s, f) != v && mesh.isConstrained(s, f))
+              possible = false; // cannot happen for a Steiner vertex
+        const std::vector<TetId> old = star.tets;
+        clearNeighbourMarks();
+        if (!possible)
+          return false;
+        replaceTets(mesh, index, old, { TetVertices{ x, y, z, u } });
+        return true;
       }
-      TetVertices merged = { x, y, z, w };
-      if (predicates::orient3d(mesh.point(x), mesh.point(y), mesh.point(z), mesh.point(w)) <= 0)
-        return false;
-      for (TetId s : star)
-      {
-        for (int f = 0; f < 4; ++f)
-        {
-          if (mesh.vertex(s, f) != v && mesh.isConstrained(s, f))
-            return false; // an inner face is constrained: cannot happen for a Steiner vertex
-        }
-      }
-      replaceTets(mesh, index, star, { merged });
-      return true;
-    }
-    FlipCandidate best, candidate;
-    bool found = false;
-    for (std::size_t k = 0; k < neighbours.size(); ++k)
-    {
-      VertexId w = neighbours[k];
-      TetId t = firstTet[k];
+      const VertexId w = star.neighbours[k];
+      const TetId t = star.neighbourTet[w];
       // The first removable edge will do (shape is the optimiser's business); taking the
       // best of all costs a DP per neighbour at every step.
-      if (edgeRemovalCandidate(mesh, t, v, w, noCost, candidate))
-      {
-        best = candidate;
-        found = true;
-        break;
-      }
+      if (t < 0 || !edgeRemovalCandidate(mesh, t, v, w, noCost, candidate))
+        continue;
+      created.clear();
+      for (TetId old : candidate.oldTets)
+        star.remove(old); // every shell tet has the edge, so v
+      star.neighbourTet[w] = -1;
+      replaceTets(mesh, index, candidate.oldTets, candidate.newTets, &created);
+      for (TetId c : created)
+        if (localIndex(mesh, c, v) >= 0)
+        {
+          star.add(c);
+          star.noteNeighbours(mesh, c, v);
+        }
+      // w is no neighbour any more (noteNeighbours never sees it again): keep it out.
+      star.neighbourTet[w] = -1;
+      --live;
+      progress = true;
     }
-    if (!found)
-      return false;
-    replaceTets(mesh, index, best.oldTets, best.newTets);
   }
+  clearNeighbourMarks();
+  return false;
 }
 
 } // namespace
@@ -106,11 +162,11 @@ int removeSteinerPoints(TetMesh& mesh, std::vector<VertexId>& steiner)
   VertexTetIndex index;
   index.rebuild(mesh);
   std::vector<VertexId> kept;
-  NeighbourMarks marks;
+  VertexStar star;
   int removed = 0;
   for (VertexId v : steiner)
   {
-    if (removeVertex(mesh, index, v, marks))
+    if (removeVertex(mesh, index, v, star))
       ++removed;
     else
       kept.push_back(v);

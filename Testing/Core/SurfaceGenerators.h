@@ -198,6 +198,46 @@ inline Surface icosphere(int level, double radius = 1, std::array<double, 3> c =
   return s;
 }
 
+// A latitude-longitude sphere laid out like vtkSphereSource's (the most common test surface
+// in VTK): two poles with fans of `theta` thin triangles, `phi - 2` rings of `theta` points.
+// Every point lies on one sphere (up to rounding), the fully co-spherical case, and the pole
+// fans give vertices of very high degree.
+inline Surface uvSphere(int theta, int phi, double radius = 0.5)
+{
+  Surface s;
+  const double pi = 3.14159265358979323846;
+  const std::int32_t north = s.addPoint(0, 0, radius);
+  const std::int32_t south = s.addPoint(0, 0, -radius);
+  for (int j = 1; j < phi - 1; ++j)
+  {
+    const double p = pi * j / (phi - 1);
+    for (int i = 0; i < theta; ++i)
+    {
+      const double t = 2 * pi * i / theta;
+      s.addPoint(radius * std::sin(p) * std::cos(t),
+        radius * std::sin(p) * std::sin(t),
+        radius * std::cos(p));
+    }
+  }
+  auto id = [&](int ring, int i) { return 2 + ring * theta + (i % theta); };
+  const double centre[3] = { 0, 0, 0 };
+  for (int i = 0; i < theta; ++i)
+  {
+    s.addTriangle(north, id(0, i), id(0, i + 1));
+    orientAway(s, s.triangleCount() - 1, centre);
+    s.addTriangle(south, id(phi - 3, i + 1), id(phi - 3, i));
+    orientAway(s, s.triangleCount() - 1, centre);
+    for (int ring = 0; ring + 1 < phi - 2; ++ring)
+    {
+      s.addTriangle(id(ring, i), id(ring + 1, i), id(ring + 1, i + 1));
+      orientAway(s, s.triangleCount() - 1, centre);
+      s.addTriangle(id(ring, i), id(ring + 1, i + 1), id(ring, i + 1));
+      orientAway(s, s.triangleCount() - 1, centre);
+    }
+  }
+  return s;
+}
+
 inline Surface torus(double R, double r, int nu, int nv)
 {
   Surface s;
