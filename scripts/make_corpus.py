@@ -154,6 +154,30 @@ def icosphere(levels, radius=1.0, center=(0, 0, 0)):
     return orient_outward((points, np.array(faces, dtype=np.int64)))
 
 
+def uv_sphere(theta, phi, radius=0.5):
+    """vtkSphereSource's layout: two poles with fans of `theta` triangles, phi - 2 rings."""
+    pts = [(0.0, 0.0, radius), (0.0, 0.0, -radius)]
+    for j in range(1, phi - 1):
+        p = math.pi * j / (phi - 1)
+        for i in range(theta):
+            t = 2 * math.pi * i / theta
+            pts.append((radius * math.sin(p) * math.cos(t), radius * math.sin(p) * math.sin(t),
+                        radius * math.cos(p)))
+    rings = phi - 2
+
+    def pid(ring, i):
+        return 2 + ring * theta + i % theta
+
+    tris = []
+    for i in range(theta):
+        tris.append((0, pid(0, i), pid(0, i + 1)))
+        for ring in range(rings - 1):
+            tris.append((pid(ring, i), pid(ring + 1, i), pid(ring + 1, i + 1)))
+            tris.append((pid(ring, i), pid(ring + 1, i + 1), pid(ring, i + 1)))
+        tris.append((1, pid(rings - 1, i + 1), pid(rings - 1, i)))
+    return orient_outward((np.array(pts, dtype=np.float64), np.array(tris, dtype=np.int64)))
+
+
 def torus(R, r, nu, nv, center=(0, 0, 0), rotate=None):
     """Torus around the z axis, nu steps along the big circle, nv around the tube."""
     b = Builder()
@@ -358,6 +382,11 @@ def make_cases():
         shells.append(torus(1.0, r, 64, 12, center=c, rotate=rot))
     cases["tori_tangle"] = (
         shells, [0, 1, 2, 3], "chain of four linked, disjoint thin tori: several interlocked shells")
+
+    cases["uv_sphere"] = (
+        [uv_sphere(100, 100)], [0],
+        "latitude-longitude sphere laid out like vtkSphereSource 100x100: every point on one "
+        "sphere (fully co-spherical Delaunay), pole fans of 100 thin triangles")
 
     return cases
 
