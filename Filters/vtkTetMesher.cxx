@@ -477,6 +477,7 @@ int vtkTetMesher::RequestData(vtkInformation*,
   options.refinement.memoryLimitBytes = this->MemoryLimit > 0 ? this->MemoryLimit * 1e6
     : this->MemoryLimit == 0                                  ? tetmesher::availableMemoryBytes()
                                                               : 0.0;
+  options.boundary.memoryLimitBytes = options.refinement.memoryLimitBytes;
   const auto start = std::chrono::steady_clock::now();
   bool outOfTime = false;
   tetmesher::VolumeMeshResult result = tetmesher::meshVolume(coords.data(),

@@ -199,9 +199,10 @@ public:
 
   ///@{
   /**
-   * Memory limit in MB (10^6 bytes) for the refined mesh. Before inserting interior points
-   * the filter estimates the mesh the size field asks for (about 2 kB per point) and stops
-   * with an error naming the estimate when it exceeds the limit. 0, the default: the memory
+   * Memory limit in MB (10^6 bytes). Before the boundary mesh (about 2.5 kB per surface
+   * point) and before inserting interior points (about 2 kB per point the size field asks for)
+   * the filter estimates the memory needed and stops with an error naming the estimate when it
+   * exceeds the limit. 0, the default: the memory
    * available on the machine when the filter runs; negative: no check.
    */
   vtkSetMacro(MemoryLimit, double);

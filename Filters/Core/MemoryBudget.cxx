@@ -82,4 +82,24 @@ std::string checkMemoryBudget(double estimatedPoints, double limitBytes)
   return message.str();
 }
 
+std::string checkBoundaryMemoryBudget(double pointCount, double limitBytes)
+{
+  const double tets = pointCount * kTetsPerPoint;
+  const double bytes = pointCount * kBytesPerInputPoint;
+  const bool tooManyTets = !(tets <= kMaxTets);
+  const bool tooMuchMemory = limitBytes > 0 && !(bytes <= limitBytes);
+  if (!tooManyTets && !tooMuchMemory)
+    return "";
+  std::ostringstream message;
+  message.precision(3);
+  message << "the surface has " << pointCount << " points: its boundary mesh needs about " << tets
+          << " tetrahedra and " << formatBytes(bytes) << " of memory, ";
+  if (tooManyTets)
+    message << "more than the " << kMaxTets << " tetrahedra a mesh can have";
+  else
+    message << "more than the memory limit of " << formatBytes(limitBytes);
+  message << "; mesh a coarser surface (decimate it) or split it into parts";
+  return message.str();
+}
+
 } // namespace tetmesher

@@ -16,6 +16,11 @@ namespace tetmesher
 // fixed 28 MB; 2 kB leaves a little room.
 constexpr double kBytesPerEstimatedPoint = 2000.0;
 
+// Peak bytes of the boundary mesh per input point (Delaunay, recovery, regions, the VTK input
+// and output). Measured 2026-11-28, CLI --boundary-only on vtkSphereSource-like spheres:
+// 2.13 GB for 998k points, 239 MB for 89k points (2.1-2.4 kB per point beyond the fixed 28 MB).
+constexpr double kBytesPerInputPoint = 2500.0;
+
 // Tets per vertex of a Delaunay-like mesh (6.4-6.6 measured); with the face references
 // 4 * tet + face held in 32-bit integers, a mesh can have at most 2^29 tets.
 constexpr double kTetsPerPoint = 6.5;
@@ -33,5 +38,9 @@ std::string formatBytes(double bytes);
 // (<= 0: no memory limit) and in the 32-bit indices; else the error, naming the estimate,
 // the limit and what to change.
 std::string checkMemoryBudget(double estimatedPoints, double limitBytes);
+
+// The same for the boundary mesh of a surface of `pointCount` points, before its Delaunay
+// tetrahedralization is built.
+std::string checkBoundaryMemoryBudget(double pointCount, double limitBytes);
 
 } // namespace tetmesher

@@ -2,6 +2,7 @@
 
 #include "ConstraintRecovery.h"
 #include "Delaunay.h"
+#include "MemoryBudget.h"
 #include "Regions.h"
 #include "SteinerRemoval.h"
 #include "SurfaceDiagnosis.h"
@@ -33,6 +34,9 @@ MesherResult meshSurface(const double* points,
   MesherResult result;
   auto report = [&](double fraction) { return !progress || progress(fraction); };
 
+  result.error = checkBoundaryMemoryBudget(pointCount, options.memoryLimitBytes);
+  if (!result.error.empty())
+    return result;
   SurfaceInput surface;
   result.error = buildSurfaceInput(points, pointCount, triangles, triangleCount, surface);
   if (!result.error.empty())

@@ -36,6 +36,10 @@ struct MesherOptions
   // Wall-clock budget of boundary recovery in seconds (0: none). When exceeded, meshSurface
   // returns ok = false with an error naming the item being recovered.
   double maxSeconds = 0;
+  // Refuse, before building anything, a surface whose boundary mesh is estimated above this
+  // many bytes (MemoryBudget.h); <= 0: no memory check. Beyond the 32-bit indices (2^29
+  // tets) is always refused.
+  double memoryLimitBytes = 0;
 };
 
 struct MesherResult

@@ -199,3 +199,27 @@ TEST(VolumeMesher, SizeFieldBeyondTheMemoryLimitIsRefused)
   EXPECT_TRUE(v.tets.empty());
   EXPECT_NEAR(v.refinementStats.estimatedPoints, std::sqrt(2.0) / (h * h * h), 0.01e6);
 }
+
+// The boundary mesh is estimated from the point count before the Delaunay stage.
+TEST(VolumeMesher, SurfaceBeyondTheMemoryLimitIsRefused)
+{
+  EXPECT_EQ(checkBoundaryMemoryBudget(1e6, 1e10), "");
+  const std::string tooMuch = checkBoundaryMemoryBudget(1e6, 1e9);
+  EXPECT_NE(tooMuch.find("the surface has 1e+06 points"), std::string::npos) << tooMuch;
+  EXPECT_NE(tooMuch.find("2.5 GB of memory, more than the memory limit of 1 GB"), std::string::npos)
+    << tooMuch;
+  EXPECT_NE(
+    checkBoundaryMemoryBudget(1e8, 0).find("tetrahedra a mesh can have"), std::string::npos);
+
+  Surface s = icosphere(3); // 642 points: 1.6 MB estimated
+  MesherOptions options;
+  options.memoryLimitBytes = 1e6;
+  MesherResult r =
+    meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), options);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("the surface has 642 points"), std::string::npos) << r.error;
+  EXPECT_TRUE(r.tets.empty());
+  options.memoryLimitBytes = 2e6;
+  r = meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), options);
+  EXPECT_TRUE(r.ok) << r.error;
+}

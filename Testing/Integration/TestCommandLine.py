@@ -124,6 +124,10 @@ with tempfile.TemporaryDirectory() as tmp:
                     "more than the memory limit of 100 MB"])
     if os.path.exists(out + ".mem.vtu"):
         failures.append("--memory-limit: an output file was written after the refusal")
+    # The boundary mesh alone is estimated too (2.5 kB per surface point): 386 points, 0.97 MB.
+    expect(["mesh", os.path.join(corpus, "cube.vtp"), "-o", out, "-q", "--boundary-only",
+            "--memory-limit", "0.5"], 1,
+           err_has=["the surface has 386 points", "965 kB of memory, more than the memory limit of 500 kB"])
     # Beyond the 32-bit indices whatever the memory: h = 1e-5 in the unit cube.
     expect(["mesh", os.path.join(corpus, "cube.vtp"), "-o", out, "-q", "--size", "1e-5",
             "--memory-limit", "-1"], 1,
