@@ -62,44 +62,59 @@ std::string formatBytes(double bytes)
   return text;
 }
 
-std::string checkMemoryBudget(double estimatedPoints, double limitBytes)
+namespace
 {
-  const double tets = estimatedPoints * kTetsPerPoint;
-  const double bytes = estimatedPoints * kBytesPerEstimatedPoint;
+// Empty when `points` vertices (about kTetsPerPoint tets each, `bytesPerPoint` bytes) fit;
+// else `what` followed by the estimate, the limit exceeded and `remedy`.
+std::string checkBudget(double points,
+  double bytesPerPoint,
+  double limitBytes,
+  const std::string& what,
+  const char* remedy)
+{
+  const double tets = points * kTetsPerPoint;
+  const double bytes = points * bytesPerPoint;
   const bool tooManyTets = !(tets <= kMaxTets);
   const bool tooMuchMemory = limitBytes > 0 && !(bytes <= limitBytes);
   if (!tooManyTets && !tooMuchMemory)
     return "";
   std::ostringstream message;
   message.precision(3);
-  message << "the size field asks for about " << estimatedPoints << " interior points (about "
-          << tets << " tetrahedra, " << formatBytes(bytes) << " of memory), ";
+  message << what << " about " << tets << " tetrahedra and " << formatBytes(bytes)
+          << " of memory, ";
   if (tooManyTets)
     message << "more than the " << kMaxTets << " tetrahedra a mesh can have";
   else
     message << "more than the memory limit of " << formatBytes(limitBytes);
-  message << "; ask for larger elements (a larger size, size scale or minimum size)";
+  message << "; " << remedy;
   return message.str();
+}
+
+std::string count(double value)
+{
+  std::ostringstream text;
+  text.precision(3);
+  text << value;
+  return text.str();
+}
+} // namespace
+
+std::string checkMemoryBudget(double estimatedPoints, double limitBytes)
+{
+  return checkBudget(estimatedPoints,
+    kBytesPerEstimatedPoint,
+    limitBytes,
+    "the size field asks for about " + count(estimatedPoints) + " interior points:",
+    "ask for larger elements (a larger size, size scale or minimum size)");
 }
 
 std::string checkBoundaryMemoryBudget(double pointCount, double limitBytes)
 {
-  const double tets = pointCount * kTetsPerPoint;
-  const double bytes = pointCount * kBytesPerInputPoint;
-  const bool tooManyTets = !(tets <= kMaxTets);
-  const bool tooMuchMemory = limitBytes > 0 && !(bytes <= limitBytes);
-  if (!tooManyTets && !tooMuchMemory)
-    return "";
-  std::ostringstream message;
-  message.precision(3);
-  message << "the surface has " << pointCount << " points: its boundary mesh needs about " << tets
-          << " tetrahedra and " << formatBytes(bytes) << " of memory, ";
-  if (tooManyTets)
-    message << "more than the " << kMaxTets << " tetrahedra a mesh can have";
-  else
-    message << "more than the memory limit of " << formatBytes(limitBytes);
-  message << "; mesh a coarser surface (decimate it) or split it into parts";
-  return message.str();
+  return checkBudget(pointCount,
+    kBytesPerInputPoint,
+    limitBytes,
+    "the surface has " + count(pointCount) + " points: its boundary mesh needs",
+    "mesh a coarser surface (decimate it) or split it into parts");
 }
 
 } // namespace tetmesher
