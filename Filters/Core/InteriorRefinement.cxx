@@ -24,6 +24,16 @@ double distance(const double* a, const double* b)
   return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
+// det[b-a; c-a; d-a]
+double det3(const double* a, const double* b, const double* c, const double* d)
+{
+  const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+  const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+  const double w[3] = { d[0] - a[0], d[1] - a[1], d[2] - a[2] };
+  return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+    u[2] * (v[0] * w[1] - v[1] * w[0]);
+}
+
 std::uint64_t edgeKey(VertexId a, VertexId b)
 {
   if (a > b)
@@ -588,9 +598,218 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     return -1;
   };
 
+  // h at p, a point in `container`: the background field, else the interpolation of the
+  // container's vertex sizes (already scaled: clamped only).
+  auto sizeAt = [&](const double* p, TetId container, double fallback)
+  {
+    double hp;
+    if (background)
+    {
+      hp = background(p);
+      return hp > 0 && std::isfinite(hp) ? scaleAndClampSize(hp, sizeOptions) : fallback;
+    }
+    const double* corners[4];
+    double hc[4];
+    for (int i = 0; i < 4; ++i)
+    {
+      const VertexId w = mesh.vertex(container, i);
+      corners[i] = mesh.point(w);
+      hc[i] = h[w];
+    }
+    hp = interpolateSize(p, corners, hc, sizeOptions.interpolationPower);
+    if (sizeOptions.minSize > 0)
+      hp = std::max(hp, sizeOptions.minSize);
+    if (sizeOptions.maxSize > 0)
+      hp = std::min(hp, sizeOptions.maxSize);
+    return hp;
+  };
+  // Inserts p (in `container`, of region r) with size hp unless a vertex or a constrained
+  // face is too close or the kernel refuses it. Returns a tet of the new vertex, or -1.
+  auto tryInsert =
+    [&](
+      const double* p, TetId container, double hp, std::int32_t r, double boundaryDistance) -> TetId
+  {
+    if (checkProximity && grid.hasNear(p, hp, mesh.coords, h))
+    {
+      ++result.rejectedNearVertex;
+      return -1;
+    }
+    if (boundaryDistance > 0 && nearConstrainedFace(container, p, boundaryDistance * hp))
+    {
+      ++result.rejectedNearBoundary;
+      return -1;
+    }
+    const VertexId v = mesh.addVertex(p[0], p[1], p[2]);
+    const InsertResult inserted = insertVertex(mesh, v, container, *workspace);
+    if (inserted.status != InsertStatus::Inserted)
+    {
+      mesh.coords.resize(3 * static_cast<std::size_t>(v));
+      ++result.rejectedByKernel;
+      return -1;
+    }
+    h.push_back(hp);
+    region.resize(static_cast<std::size_t>(mesh.tetCapacity()), -1);
+    vertexTet.resize(static_cast<std::size_t>(mesh.vertexCount()), -1);
+    starOf(mesh, inserted.tet, v, star);
+    for (TetId u : star)
+    {
+      region[u] = r;
+      for (int i = 0; i < 4; ++i)
+        vertexTet[mesh.vertex(u, i)] = u;
+    }
+    if (checkProximity)
+      grid.insert(v, p, hp);
+    return inserted.tet;
+  };
+
+  if (options.latticeSpacing > 0)
+  {
+    // Lattice prefill: body-centred cubic points (the cube corners and centres of a grid of
+    // spacing a) whose Delaunay tets are all congruent (edges a and a sqrt(3)/2, dihedral
+    // angles 60 and 90 degrees) and unique (no 5 co-spherical points with an empty sphere).
+    // Where h varies, levels of spacing a_L = latticeSpacing * h0 * ratio^L each fill the
+    // places where h rounds to their level; the seams between levels, and the layer next to
+    // the boundary, are left to the edge splitting below.
+    const double ratio = std::max(options.latticeLevelRatio, 1.01);
+    const double logRatio = std::log(ratio);
+    auto levelOfSize = [&](double size)
+    { return static_cast<int>(std::floor(std::log(size / minH) / logRatio + 0.5)); };
+    struct LatticePoint
+    {
+      std::uint64_t order;
+      double p[3];
+      double h;
+      TetId tet;
+    };
+    std::vector<LatticePoint> points;
+    std::unordered_set<std::uint64_t> taken;
+    const TetId initialTets = mesh.tetCapacity();
+    for (TetId t = 0; t < initialTets; ++t)
+    {
+      if (mesh.isDeleted(t))
+        continue;
+      const double* c[4];
+      double hc[4];
+      double bmin[3], bmax[3];
+      double hlo = std::numeric_limits<double>::max(), hhi = 0;
+      for (int i = 0; i < 4; ++i)
+      {
+        c[i] = mesh.point(mesh.vertex(t, i));
+        hc[i] = h[mesh.vertex(t, i)];
+        hlo = std::min(hlo, hc[i]);
+        hhi = std::max(hhi, hc[i]);
+        for (int k = 0; k < 3; ++k)
+        {
+          bmin[k] = i == 0 ? c[i][k] : std::min(bmin[k], c[i][k]);
+          bmax[k] = i == 0 ? c[i][k] : std::max(bmax[k], c[i][k]);
+        }
+      }
+      // Signed volume terms for the barycentric test: faces opposite each corner.
+      const double total = det3(c[0], c[1], c[2], c[3]);
+      if (!(std::fabs(total) > 0))
+        continue;
+      const int levelLo = background ? 0 : levelOfSize(hlo);
+      const int levelHi = background ? 0 : levelOfSize(hhi);
+      for (int level = levelLo; level <= levelHi; ++level)
+      {
+        const double a = options.latticeSpacing * minH * std::pow(ratio, level);
+        for (int sub = 0; sub < 2; ++sub)
+        {
+          const double shift = sub ? 0.5 : 0.0;
+          std::int64_t first[3], last[3];
+          for (int k = 0; k < 3; ++k)
+          {
+            first[k] = static_cast<std::int64_t>(std::ceil((bmin[k] - lo[k]) / a - shift));
+            last[k] = static_cast<std::int64_t>(std::floor((bmax[k] - lo[k]) / a - shift));
+          }
+          for (std::int64_t i = first[0]; i <= last[0]; ++i)
+            for (std::int64_t j = first[1]; j <= last[1]; ++j)
+              for (std::int64_t k = first[2]; k <= last[2]; ++k)
+              {
+                const double p[3] = {
+                  lo[0] + (i + shift) * a, lo[1] + (j + shift) * a, lo[2] + (k + shift) * a
+                };
+                const double b0 = det3(p, c[1], c[2], c[3]) / total;
+                const double b1 = det3(c[0], p, c[2], c[3]) / total;
+                const double b2 = det3(c[0], c[1], p, c[3]) / total;
+                const double b3 = det3(c[0], c[1], c[2], p) / total;
+                if (b0 < -1e-12 || b1 < -1e-12 || b2 < -1e-12 || b3 < -1e-12)
+                  continue;
+                double hp;
+                if (background)
+                {
+                  hp = background(p);
+                  if (!(hp > 0) || !std::isfinite(hp))
+                    continue;
+                  hp = scaleAndClampSize(hp, sizeOptions);
+                  // One lattice only with a background field: where it matches.
+                  if (std::fabs(std::log(hp / a * options.latticeSpacing)) > 0.5 * logRatio)
+                    continue;
+                }
+                else
+                {
+                  hp = interpolateSize(p, c, hc, sizeOptions.interpolationPower);
+                  if (sizeOptions.minSize > 0)
+                    hp = std::max(hp, sizeOptions.minSize);
+                  if (sizeOptions.maxSize > 0)
+                    hp = std::min(hp, sizeOptions.maxSize);
+                  if (levelOfSize(hp) != level)
+                    continue;
+                }
+                const std::uint64_t key = (static_cast<std::uint64_t>(level & 63) << 58) |
+                  (static_cast<std::uint64_t>(sub) << 57) |
+                  ((static_cast<std::uint64_t>(i) & 0x7FFFF) << 38) |
+                  ((static_cast<std::uint64_t>(j) & 0x7FFFF) << 19) |
+                  (static_cast<std::uint64_t>(k) & 0x7FFFF);
+                if (!taken.insert(key).second)
+                  continue;
+                points.push_back({ hilbertKey(p), { p[0], p[1], p[2] }, hp, t });
+              }
+        }
+      }
+    }
+    std::sort(points.begin(),
+      points.end(),
+      [](const LatticePoint& x, const LatticePoint& y)
+      {
+        if (x.order != y.order)
+          return x.order < y.order;
+        return std::lexicographical_compare(x.p, x.p + 3, y.p, y.p + 3);
+      });
+    // The initial tets are deleted as points go in: remember their regions.
+    std::vector<std::int32_t> initialRegion(region.begin(), region.begin() + initialTets);
+    TetId hint = -1;
+    for (const LatticePoint& q : points)
+    {
+      if (result.insertedPoints >= budget)
+      {
+        result.budgetReached = true;
+        break;
+      }
+      // The last insertion is close (Hilbert order); q.tet only until then.
+      const TetId container = locatePoint(mesh, q.p, hint >= 0 ? hint : q.tet);
+      if (container < 0 || region[container] != initialRegion[q.tet])
+        continue;
+      const TetId made =
+        tryInsert(q.p, container, q.h, initialRegion[q.tet], options.latticeBoundaryDistance);
+      if (made < 0)
+        continue;
+      hint = made;
+      ++result.insertedPoints;
+      ++result.latticePoints;
+      if (progress && (result.insertedPoints & 1023) == 0)
+      {
+        const double fraction = std::min(
+          0.99, result.insertedPoints / std::max(1.0, result.estimatedPoints - initialCount));
+        if (!progress(fraction))
+          return finish(false, "refineInterior: aborted");
+      }
+    }
+  }
+
   for (int round = 0; round < options.maxRounds; ++round)
   {
-    if (round > 0)
+    if (round > 0 || result.latticePoints > 0)
       graph.build(mesh);
     if (sizeOptions.gradation > 1)
       limitGradation(mesh.coords.data(),
@@ -644,62 +863,9 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       const TetId container = locatePoint(mesh, p, t);
       if (container < 0 || region[container] != region[t])
         continue;
-      double hp;
-      if (background)
-      {
-        hp = background(p);
-        hp = hp > 0 && std::isfinite(hp) ? scaleAndClampSize(hp, sizeOptions)
-                                         : 0.5 * (h[c.a] + h[c.b]);
-      }
-      else
-      {
-        const double* corners[4];
-        double hc[4];
-        for (int i = 0; i < 4; ++i)
-        {
-          const VertexId w = mesh.vertex(container, i);
-          corners[i] = mesh.point(w);
-          hc[i] = h[w];
-        }
-        hp = interpolateSize(p, corners, hc, sizeOptions.interpolationPower);
-        // Interpolated from scaled sizes: clamp only.
-        if (sizeOptions.minSize > 0)
-          hp = std::max(hp, sizeOptions.minSize);
-        if (sizeOptions.maxSize > 0)
-          hp = std::min(hp, sizeOptions.maxSize);
-      }
-      if (checkProximity && grid.hasNear(p, hp, mesh.coords, h))
-      {
-        ++result.rejectedNearVertex;
+      const double hp = sizeAt(p, container, 0.5 * (h[c.a] + h[c.b]));
+      if (tryInsert(p, container, hp, region[t], options.minBoundaryDistance) < 0)
         continue;
-      }
-      if (options.minBoundaryDistance > 0 &&
-        nearConstrainedFace(container, p, options.minBoundaryDistance * hp))
-      {
-        ++result.rejectedNearBoundary;
-        continue;
-      }
-      const VertexId v = mesh.addVertex(p[0], p[1], p[2]);
-      const InsertResult inserted = insertVertex(mesh, v, container, *workspace);
-      if (inserted.status != InsertStatus::Inserted)
-      {
-        mesh.coords.resize(3 * static_cast<std::size_t>(v));
-        ++result.rejectedByKernel;
-        continue;
-      }
-      const std::int32_t r = region[t];
-      h.push_back(hp);
-      region.resize(static_cast<std::size_t>(mesh.tetCapacity()), -1);
-      vertexTet.resize(static_cast<std::size_t>(mesh.vertexCount()), -1);
-      starOf(mesh, inserted.tet, v, star);
-      for (TetId u : star)
-      {
-        region[u] = r;
-        for (int i = 0; i < 4; ++i)
-          vertexTet[mesh.vertex(u, i)] = u;
-      }
-      if (checkProximity)
-        grid.insert(v, p, hp);
       ++result.insertedPoints;
       ++insertedThisRound;
       if (progress && (result.insertedPoints & 1023) == 0)

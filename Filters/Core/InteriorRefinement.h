@@ -30,6 +30,14 @@ struct RefinementOptions
   // hashed from the edge's vertex ids), so that grid-like input does not produce lattice points
   // (exactly coplanar groups that rounding turns into flat tets). 0: the metric midpoint.
   double splitJitter = 0.05;
+  // Lattice prefill before the edge splitting: body-centred cubic points of spacing
+  // latticeSpacing * h (2 points per cube: one per 6 regular tets' volume at 1.04 h, the
+  // density of the edge-split meshes), in levels of sizes latticeLevelRatio apart where h
+  // varies. 0: off.
+  double latticeSpacing = 1.04;
+  double latticeLevelRatio = 1.19;
+  // A lattice point is refused when a constrained face is closer than this, in units of h.
+  double latticeBoundaryDistance = 0.5;
   // Bound on the number of rounds (each round splits the edges too long at its start).
   int maxRounds = 200;
 };
@@ -45,6 +53,7 @@ struct RefinementResult
   int rejectedNearVertex = 0;   // candidates refused: too close to a vertex
   int rejectedNearBoundary = 0; // ... too close to a constrained face
   int rejectedByKernel = 0;     // ... refused by insertVertex (on a constraint, duplicate)
+  int latticePoints = 0;        // inserted points that came from the lattice prefill
   double estimatedPoints = 0;   // integral of sqrt(2)/h^3 over the initial mesh (see .cxx)
 };
 
