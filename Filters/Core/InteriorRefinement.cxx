@@ -234,6 +234,101 @@ private:
   std::vector<VertexId> next_;
 };
 
+// The constrained faces (boundary, interfaces) in a hash grid, for the distance from a
+// candidate point to the nearest one. They never change during refinement (no point goes on
+// them, no cavity crosses them), so the grid is built once.
+class FaceGrid
+{
+public:
+  FaceGrid(const TetMesh& mesh, double cell, const double* origin)
+    : cell_(cell)
+  {
+    for (int k = 0; k < 3; ++k)
+      origin_[k] = origin[k];
+    for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+    {
+      if (mesh.isDeleted(t))
+        continue;
+      for (int f = 0; f < 4; ++f)
+      {
+        if (!faceIsConstrained(mesh, t, f))
+          continue;
+        const FaceRef n = mesh.neighbor(t, f);
+        if (n != kNoNeighbor && faceTet(n) < t)
+          continue; // an interface face, listed from its other side
+        const std::int32_t id = static_cast<std::int32_t>(corners_.size() / 3);
+        double lo[3], hi[3];
+        for (int k = 0; k < 3; ++k)
+        {
+          const VertexId v = mesh.vertex(t, kFaceVertices[f][k]);
+          corners_.push_back(v);
+          for (int a = 0; a < 3; ++a)
+          {
+            lo[a] = k == 0 ? mesh.point(v)[a] : std::min(lo[a], mesh.point(v)[a]);
+            hi[a] = k == 0 ? mesh.point(v)[a] : std::max(hi[a], mesh.point(v)[a]);
+          }
+        }
+        std::int64_t c0[3], c1[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          c0[a] = index(lo[a], a);
+          c1[a] = index(hi[a], a);
+        }
+        for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
+          for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
+            for (std::int64_t k = c0[2]; k <= c1[2]; ++k)
+              cells_[key(i, j, k)].push_back(id);
+      }
+    }
+  }
+
+  // Is a constrained face closer to p than limit?
+  bool near(const TetMesh& mesh, const double* p, double limit) const
+  {
+    const double limit2 = limit * limit;
+    std::int64_t c0[3], c1[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      c0[a] = index(p[a] - limit, a);
+      c1[a] = index(p[a] + limit, a);
+    }
+    for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
+      for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
+        for (std::int64_t k = c0[2]; k <= c1[2]; ++k)
+        {
+          auto it = cells_.find(key(i, j, k));
+          if (it == cells_.end())
+            continue;
+          for (std::int32_t id : it->second)
+          {
+            const VertexId* v = &corners_[3 * static_cast<std::size_t>(id)];
+            if (pointTriangleDistance2(p, mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2])) <
+              limit2)
+              return true;
+          }
+        }
+    return false;
+  }
+
+private:
+  std::int64_t index(double x, int a) const
+  {
+    const double c = std::floor((x - origin_[a]) / cell_);
+    return static_cast<std::int64_t>(std::max(-1e6, std::min(1e6, c)));
+  }
+  static std::uint64_t key(std::int64_t i, std::int64_t j, std::int64_t k)
+  {
+    auto part = [](std::int64_t x)
+    { return static_cast<std::uint64_t>(x + (1 << 20)) & ((1u << 21) - 1); };
+    return (part(i) << 42) | (part(j) << 21) | part(k);
+  }
+
+  double cell_;
+  double origin_[3];
+  std::vector<VertexId> corners_;
+  std::unordered_map<std::uint64_t, std::vector<std::int32_t>> cells_;
+};
+
 // Unique edges of the live tets as symmetric CSR adjacency, with for each entry a tet that has
 // the edge. Linear time: entries are bucketed by their smaller vertex (counting sort) and
 // duplicates dropped with a stamp per vertex; the order is the tet order, so deterministic.
@@ -520,6 +615,14 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     for (VertexId v = 0; v < initialCount; ++v)
       if (vertexTet[v] >= 0)
         grid.insert(v, mesh.point(v), h[v]);
+  std::unique_ptr<FaceGrid> faces;
+  if (options.minBoundaryDistance > 0 || options.latticeBoundaryDistance > 0)
+  {
+    // Cells of half the median size: a query looks at a few cells per axis.
+    std::vector<double> sorted(h.begin(), h.end());
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    faces = std::make_unique<FaceGrid>(mesh, 0.5 * sorted[sorted.size() / 2], lo);
+  }
 
   std::unique_ptr<InsertionWorkspace, WorkspaceDeleter> workspace(createInsertionWorkspace());
   std::vector<Candidate> candidates;
@@ -556,32 +659,6 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     const double* pb = mesh.point(b);
     for (int k = 0; k < 3; ++k)
       p[k] = pa[k] + s * (pb[k] - pa[k]);
-  };
-  auto nearConstrainedFace = [&](TetId t, const double* p, double limit)
-  {
-    const double limit2 = limit * limit;
-    TetId around[5] = { t, -1, -1, -1, -1 };
-    for (int f = 0; f < 4; ++f)
-    {
-      const FaceRef n = mesh.neighbor(t, f);
-      around[f + 1] = n == kNoNeighbor ? -1 : faceTet(n);
-    }
-    for (TetId u : around)
-    {
-      if (u < 0)
-        continue;
-      for (int f = 0; f < 4; ++f)
-      {
-        if (!faceIsConstrained(mesh, u, f))
-          continue;
-        const double* a = mesh.point(mesh.vertex(u, kFaceVertices[f][0]));
-        const double* b = mesh.point(mesh.vertex(u, kFaceVertices[f][1]));
-        const double* c = mesh.point(mesh.vertex(u, kFaceVertices[f][2]));
-        if (pointTriangleDistance2(p, a, b, c) < limit2)
-          return true;
-      }
-    }
-    return false;
   };
   auto findEdge = [&](VertexId a, VertexId b, TetId hint) -> TetId
   {
@@ -634,7 +711,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       ++result.rejectedNearVertex;
       return -1;
     }
-    if (boundaryDistance > 0 && nearConstrainedFace(container, p, boundaryDistance * hp))
+    if (boundaryDistance > 0 && faces->near(mesh, p, boundaryDistance * hp))
     {
       ++result.rejectedNearBoundary;
       return -1;
@@ -680,6 +757,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       double p[3];
       double h;
       TetId tet;
+      VertexId corner[4];
     };
     std::vector<LatticePoint> points;
     std::unordered_set<std::uint64_t> taken;
@@ -763,7 +841,11 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
                   (static_cast<std::uint64_t>(k) & 0x7FFFF);
                 if (!taken.insert(key).second)
                   continue;
-                points.push_back({ hilbertKey(p), { p[0], p[1], p[2] }, hp, t });
+                points.push_back({ hilbertKey(p),
+                  { p[0], p[1], p[2] },
+                  hp,
+                  t,
+                  { mesh.vertex(t, 0), mesh.vertex(t, 1), mesh.vertex(t, 2), mesh.vertex(t, 3) } });
               }
         }
       }
@@ -786,8 +868,14 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
         result.budgetReached = true;
         break;
       }
-      // The last insertion is close (Hilbert order); q.tet only until then.
-      const TetId container = locatePoint(mesh, q.p, hint >= 0 ? hint : q.tet);
+      // Walk from the last insertion (close, in Hilbert order), else from the corners of the
+      // initial tet that contained q (the segment from a corner to q lies in that tet, so
+      // inside the domain even when it is not convex); the exhaustive search last.
+      TetId container = walkToPoint(mesh, q.p, hint);
+      for (int i = 0; i < 4 && container < 0; ++i)
+        container = walkToPoint(mesh, q.p, vertexTet[q.corner[i]]);
+      if (container < 0)
+        container = locatePoint(mesh, q.p, q.tet);
       if (container < 0 || region[container] != initialRegion[q.tet])
         continue;
       const TetId made =

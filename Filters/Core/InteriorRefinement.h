@@ -37,7 +37,10 @@ struct RefinementOptions
   double latticeSpacing = 1.04;
   double latticeLevelRatio = 1.19;
   // A lattice point is refused when a constrained face is closer than this, in units of h.
-  double latticeBoundaryDistance = 0.5;
+  // Larger than minBoundaryDistance: a lattice cut off at 0.5 h leaves its face diagonals
+  // (1.47 h) next to the boundary, too long and unsplittable (their midpoints are 0.52 h from
+  // the lattice's next layer); at 0.8 h the edge splitting fills the layer.
+  double latticeBoundaryDistance = 0.8;
   // Bound on the number of rounds (each round splits the edges too long at its start).
   int maxRounds = 200;
 };
