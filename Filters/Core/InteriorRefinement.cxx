@@ -268,6 +268,7 @@ public:
             hi[a] = k == 0 ? mesh.point(v)[a] : std::max(hi[a], mesh.point(v)[a]);
           }
         }
+        boxes_.insert(boxes_.end(), { lo[0], lo[1], lo[2], hi[0], hi[1], hi[2] });
         std::int64_t c0[3], c1[3];
         for (int a = 0; a < 3; ++a)
         {
@@ -301,6 +302,11 @@ public:
             continue;
           for (std::int32_t id : it->second)
           {
+            // Bounding box first: most faces of a cell are farther than limit.
+            const double* box = &boxes_[6 * static_cast<std::size_t>(id)];
+            if (p[0] < box[0] - limit || p[0] > box[3] + limit || p[1] < box[1] - limit ||
+              p[1] > box[4] + limit || p[2] < box[2] - limit || p[2] > box[5] + limit)
+              continue;
             const VertexId* v = &corners_[3 * static_cast<std::size_t>(id)];
             if (pointTriangleDistance2(p, mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2])) <
               limit2)
@@ -326,6 +332,7 @@ private:
   double cell_;
   double origin_[3];
   std::vector<VertexId> corners_;
+  std::vector<double> boxes_; // per face: min x y z, max x y z
   std::unordered_map<std::uint64_t, std::vector<std::int32_t>> cells_;
 };
 
@@ -618,10 +625,14 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   std::unique_ptr<FaceGrid> faces;
   if (options.minBoundaryDistance > 0 || options.latticeBoundaryDistance > 0)
   {
-    // Cells of half the median size: a query looks at a few cells per axis.
+    // Cells as wide as the query radius at the median size: a query looks at 2 or 3 cells
+    // per axis.
     std::vector<double> sorted(h.begin(), h.end());
     std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-    faces = std::make_unique<FaceGrid>(mesh, 0.5 * sorted[sorted.size() / 2], lo);
+    const double radius = std::max({ options.minBoundaryDistance,
+      options.latticeSpacing > 0 ? options.latticeBoundaryDistance : 0.0,
+      0.1 });
+    faces = std::make_unique<FaceGrid>(mesh, radius * sorted[sorted.size() / 2], lo);
   }
 
   std::unique_ptr<InsertionWorkspace, WorkspaceDeleter> workspace(createInsertionWorkspace());
@@ -760,6 +771,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       VertexId corner[4];
     };
     std::vector<LatticePoint> points;
+    const double jitter = std::clamp(options.latticeJitter, 0.0, 0.5);
     std::unordered_set<std::uint64_t> taken;
     const TetId initialTets = mesh.tetCapacity();
     for (TetId t = 0; t < initialTets; ++t)
@@ -804,9 +816,27 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
             for (std::int64_t j = first[1]; j <= last[1]; ++j)
               for (std::int64_t k = first[2]; k <= last[2]; ++k)
               {
-                const double p[3] = {
+                const std::uint64_t key = (static_cast<std::uint64_t>(level & 63) << 58) |
+                  (static_cast<std::uint64_t>(sub) << 57) |
+                  ((static_cast<std::uint64_t>(i) & 0x7FFFF) << 38) |
+                  ((static_cast<std::uint64_t>(j) & 0x7FFFF) << 19) |
+                  (static_cast<std::uint64_t>(k) & 0x7FFFF);
+                // A deterministic shift of up to +-latticeJitter/2 a per coordinate, hashed from
+                // the key (see the option).
+                double p[3] = {
                   lo[0] + (i + shift) * a, lo[1] + (j + shift) * a, lo[2] + (k + shift) * a
                 };
+                if (jitter > 0)
+                {
+                  std::uint64_t x = key * 0x9E3779B97F4A7C15ULL;
+                  for (int d = 0; d < 3; ++d)
+                  {
+                    x ^= x >> 29;
+                    x *= 0xBF58476D1CE4E5B9ULL;
+                    x ^= x >> 32;
+                    p[d] += jitter * a * ((x >> 11) * (1.0 / 9007199254740992.0) - 0.5);
+                  }
+                }
                 const double b0 = det3(p, c[1], c[2], c[3]) / total;
                 const double b1 = det3(c[0], p, c[2], c[3]) / total;
                 const double b2 = det3(c[0], c[1], p, c[3]) / total;
@@ -834,11 +864,6 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
                   if (levelOfSize(hp) != level)
                     continue;
                 }
-                const std::uint64_t key = (static_cast<std::uint64_t>(level & 63) << 58) |
-                  (static_cast<std::uint64_t>(sub) << 57) |
-                  ((static_cast<std::uint64_t>(i) & 0x7FFFF) << 38) |
-                  ((static_cast<std::uint64_t>(j) & 0x7FFFF) << 19) |
-                  (static_cast<std::uint64_t>(k) & 0x7FFFF);
                 if (!taken.insert(key).second)
                   continue;
                 points.push_back({ hilbertKey(p),
