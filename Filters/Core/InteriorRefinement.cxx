@@ -841,7 +841,9 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
                 const double b1 = det3(c[0], p, c[2], c[3]) / total;
                 const double b2 = det3(c[0], c[1], p, c[3]) / total;
                 const double b3 = det3(c[0], c[1], c[2], p) / total;
-                if (b0 < -1e-12 || b1 < -1e-12 || b2 < -1e-12 || b3 < -1e-12)
+                // Closed, with a margin: a point on a face shared by two tets is found from both
+                // (the key removes the duplicate), never from neither through rounding.
+                if (b0 < -1e-9 || b1 < -1e-9 || b2 < -1e-9 || b3 < -1e-9)
                   continue;
                 double hp;
                 if (background)
