@@ -543,6 +543,14 @@ TetId locatePoint(const TetMesh& mesh, const double* p, TetId hint)
   return t >= 0 ? t : exhaustiveLocate(mesh, p); // non-convex meshes: see insertImpl
 }
 
+TetId walkToPoint(const TetMesh& mesh, const double* p, TetId hint)
+{
+  if (hint < 0 || hint >= mesh.tetCapacity() || mesh.isDeleted(hint))
+    return -1;
+  std::uint64_t rng = kWalkSeed;
+  return walk(mesh, p, hint, rng);
+}
+
 DelaunayResult buildDelaunay(TetMesh& mesh, const DelaunayOptions& options)
 {
   DelaunayResult result;

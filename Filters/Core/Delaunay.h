@@ -71,4 +71,8 @@ InsertResult insertVertex(TetMesh& mesh, VertexId v, TetId hint, InsertionWorksp
 // Returns -1 if p is outside the triangulation.
 TetId locatePoint(const TetMesh& mesh, const double* p, TetId hint);
 
+// The same walk without the exhaustive search: -1 when it reaches the hull of the mesh (p
+// outside, or a non-convex mesh between hint and p) or when hint is not a live tet.
+TetId walkToPoint(const TetMesh& mesh, const double* p, TetId hint);
+
 } // namespace tetmesher

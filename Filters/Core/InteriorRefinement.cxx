@@ -25,6 +25,16 @@ double distance(const double* a, const double* b)
   return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
+// det[b-a; c-a; d-a]
+double det3(const double* a, const double* b, const double* c, const double* d)
+{
+  const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+  const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+  const double w[3] = { d[0] - a[0], d[1] - a[1], d[2] - a[2] };
+  return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+    u[2] * (v[0] * w[1] - v[1] * w[0]);
+}
+
 std::uint64_t edgeKey(VertexId a, VertexId b)
 {
   if (a > b)
@@ -223,6 +233,108 @@ private:
   double origin_[3];
   std::vector<Level> levels_;
   std::vector<VertexId> next_;
+};
+
+// The constrained faces (boundary, interfaces) in a hash grid, for the distance from a
+// candidate point to the nearest one. They never change during refinement (no point goes on
+// them, no cavity crosses them), so the grid is built once.
+class FaceGrid
+{
+public:
+  FaceGrid(const TetMesh& mesh, double cell, const double* origin)
+    : cell_(cell)
+  {
+    for (int k = 0; k < 3; ++k)
+      origin_[k] = origin[k];
+    for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+    {
+      if (mesh.isDeleted(t))
+        continue;
+      for (int f = 0; f < 4; ++f)
+      {
+        if (!faceIsConstrained(mesh, t, f))
+          continue;
+        const FaceRef n = mesh.neighbor(t, f);
+        if (n != kNoNeighbor && faceTet(n) < t)
+          continue; // an interface face, listed from its other side
+        const std::int32_t id = static_cast<std::int32_t>(corners_.size() / 3);
+        double lo[3], hi[3];
+        for (int k = 0; k < 3; ++k)
+        {
+          const VertexId v = mesh.vertex(t, kFaceVertices[f][k]);
+          corners_.push_back(v);
+          for (int a = 0; a < 3; ++a)
+          {
+            lo[a] = k == 0 ? mesh.point(v)[a] : std::min(lo[a], mesh.point(v)[a]);
+            hi[a] = k == 0 ? mesh.point(v)[a] : std::max(hi[a], mesh.point(v)[a]);
+          }
+        }
+        boxes_.insert(boxes_.end(), { lo[0], lo[1], lo[2], hi[0], hi[1], hi[2] });
+        std::int64_t c0[3], c1[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          c0[a] = index(lo[a], a);
+          c1[a] = index(hi[a], a);
+        }
+        for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
+          for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
+            for (std::int64_t k = c0[2]; k <= c1[2]; ++k)
+              cells_[key(i, j, k)].push_back(id);
+      }
+    }
+  }
+
+  // Is a constrained face closer to p than limit?
+  bool near(const TetMesh& mesh, const double* p, double limit) const
+  {
+    const double limit2 = limit * limit;
+    std::int64_t c0[3], c1[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      c0[a] = index(p[a] - limit, a);
+      c1[a] = index(p[a] + limit, a);
+    }
+    for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
+      for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
+        for (std::int64_t k = c0[2]; k <= c1[2]; ++k)
+        {
+          auto it = cells_.find(key(i, j, k));
+          if (it == cells_.end())
+            continue;
+          for (std::int32_t id : it->second)
+          {
+            // Bounding box first: most faces of a cell are farther than limit.
+            const double* box = &boxes_[6 * static_cast<std::size_t>(id)];
+            if (p[0] < box[0] - limit || p[0] > box[3] + limit || p[1] < box[1] - limit ||
+              p[1] > box[4] + limit || p[2] < box[2] - limit || p[2] > box[5] + limit)
+              continue;
+            const VertexId* v = &corners_[3 * static_cast<std::size_t>(id)];
+            if (pointTriangleDistance2(p, mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2])) <
+              limit2)
+              return true;
+          }
+        }
+    return false;
+  }
+
+private:
+  std::int64_t index(double x, int a) const
+  {
+    const double c = std::floor((x - origin_[a]) / cell_);
+    return static_cast<std::int64_t>(std::max(-1e6, std::min(1e6, c)));
+  }
+  static std::uint64_t key(std::int64_t i, std::int64_t j, std::int64_t k)
+  {
+    auto part = [](std::int64_t x)
+    { return static_cast<std::uint64_t>(x + (1 << 20)) & ((1u << 21) - 1); };
+    return (part(i) << 42) | (part(j) << 21) | part(k);
+  }
+
+  double cell_;
+  double origin_[3];
+  std::vector<VertexId> corners_;
+  std::vector<double> boxes_; // per face: min x y z, max x y z
+  std::unordered_map<std::uint64_t, std::vector<std::int32_t>> cells_;
 };
 
 // Unique edges of the live tets as symmetric CSR adjacency, with for each entry a tet that has
@@ -515,6 +627,18 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     for (VertexId v = 0; v < initialCount; ++v)
       if (vertexTet[v] >= 0)
         grid.insert(v, mesh.point(v), h[v]);
+  std::unique_ptr<FaceGrid> faces;
+  if (options.minBoundaryDistance > 0 || options.latticeBoundaryDistance > 0)
+  {
+    // Cells as wide as the query radius at the median size: a query looks at 2 or 3 cells
+    // per axis.
+    std::vector<double> sorted(h.begin(), h.end());
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double radius = std::max({ options.minBoundaryDistance,
+      options.latticeSpacing > 0 ? options.latticeBoundaryDistance : 0.0,
+      0.1 });
+    faces = std::make_unique<FaceGrid>(mesh, radius * sorted[sorted.size() / 2], lo);
+  }
 
   std::unique_ptr<InsertionWorkspace, WorkspaceDeleter> workspace(createInsertionWorkspace());
   std::vector<Candidate> candidates;
@@ -552,32 +676,6 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     for (int k = 0; k < 3; ++k)
       p[k] = pa[k] + s * (pb[k] - pa[k]);
   };
-  auto nearConstrainedFace = [&](TetId t, const double* p, double limit)
-  {
-    const double limit2 = limit * limit;
-    TetId around[5] = { t, -1, -1, -1, -1 };
-    for (int f = 0; f < 4; ++f)
-    {
-      const FaceRef n = mesh.neighbor(t, f);
-      around[f + 1] = n == kNoNeighbor ? -1 : faceTet(n);
-    }
-    for (TetId u : around)
-    {
-      if (u < 0)
-        continue;
-      for (int f = 0; f < 4; ++f)
-      {
-        if (!faceIsConstrained(mesh, u, f))
-          continue;
-        const double* a = mesh.point(mesh.vertex(u, kFaceVertices[f][0]));
-        const double* b = mesh.point(mesh.vertex(u, kFaceVertices[f][1]));
-        const double* c = mesh.point(mesh.vertex(u, kFaceVertices[f][2]));
-        if (pointTriangleDistance2(p, a, b, c) < limit2)
-          return true;
-      }
-    }
-    return false;
-  };
   auto findEdge = [&](VertexId a, VertexId b, TetId hint) -> TetId
   {
     if (hint >= 0 && hint < mesh.tetCapacity() && !mesh.isDeleted(hint) && tetHas(mesh, hint, a) &&
@@ -593,9 +691,245 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     return -1;
   };
 
+  // h at p, a point in `container`: the background field, else the interpolation of the
+  // container's vertex sizes (already scaled: clamped only).
+  auto sizeAt = [&](const double* p, TetId container, double fallback)
+  {
+    double hp;
+    if (background)
+    {
+      hp = background(p);
+      return hp > 0 && std::isfinite(hp) ? scaleAndClampSize(hp, sizeOptions) : fallback;
+    }
+    const double* corners[4];
+    double hc[4];
+    for (int i = 0; i < 4; ++i)
+    {
+      const VertexId w = mesh.vertex(container, i);
+      corners[i] = mesh.point(w);
+      hc[i] = h[w];
+    }
+    hp = interpolateSize(p, corners, hc, sizeOptions.interpolationPower);
+    if (sizeOptions.minSize > 0)
+      hp = std::max(hp, sizeOptions.minSize);
+    if (sizeOptions.maxSize > 0)
+      hp = std::min(hp, sizeOptions.maxSize);
+    return hp;
+  };
+  // Inserts p (in `container`, of region r) with size hp unless a vertex or a constrained
+  // face is too close or the kernel refuses it. Returns a tet of the new vertex, or -1.
+  auto tryInsert =
+    [&](
+      const double* p, TetId container, double hp, std::int32_t r, double boundaryDistance) -> TetId
+  {
+    if (checkProximity && grid.hasNear(p, hp, mesh.coords, h))
+    {
+      ++result.rejectedNearVertex;
+      return -1;
+    }
+    if (boundaryDistance > 0 && faces->near(mesh, p, boundaryDistance * hp))
+    {
+      ++result.rejectedNearBoundary;
+      return -1;
+    }
+    const VertexId v = mesh.addVertex(p[0], p[1], p[2]);
+    const InsertResult inserted = insertVertex(mesh, v, container, *workspace);
+    if (inserted.status != InsertStatus::Inserted)
+    {
+      mesh.coords.resize(3 * static_cast<std::size_t>(v));
+      ++result.rejectedByKernel;
+      return -1;
+    }
+    h.push_back(hp);
+    region.resize(static_cast<std::size_t>(mesh.tetCapacity()), -1);
+    vertexTet.resize(static_cast<std::size_t>(mesh.vertexCount()), -1);
+    starOf(mesh, inserted.tet, v, star);
+    for (TetId u : star)
+    {
+      region[u] = r;
+      for (int i = 0; i < 4; ++i)
+        vertexTet[mesh.vertex(u, i)] = u;
+    }
+    if (checkProximity)
+      grid.insert(v, p, hp);
+    return inserted.tet;
+  };
+
+  if (options.latticeSpacing > 0)
+  {
+    // Lattice prefill: body-centred cubic points (the cube corners and centres of a grid of
+    // spacing a) whose Delaunay tets are all congruent (edges a and a sqrt(3)/2, dihedral
+    // angles 60 and 90 degrees) and unique (no 5 co-spherical points with an empty sphere).
+    // Where h varies, levels of spacing a_L = latticeSpacing * h0 * ratio^L each fill the
+    // places where h rounds to their level; the seams between levels, and the layer next to
+    // the boundary, are left to the edge splitting below.
+    const double ratio = std::max(options.latticeLevelRatio, 1.01);
+    const double logRatio = std::log(ratio);
+    auto levelOfSize = [&](double size)
+    { return static_cast<int>(std::floor(std::log(size / minH) / logRatio + 0.5)); };
+    struct LatticePoint
+    {
+      std::uint64_t order;
+      double p[3];
+      double h;
+      TetId tet;
+      VertexId corner[4];
+    };
+    std::vector<LatticePoint> points;
+    const double jitter = std::clamp(options.latticeJitter, 0.0, 0.5);
+    std::unordered_set<std::uint64_t> taken;
+    const TetId initialTets = mesh.tetCapacity();
+    for (TetId t = 0; t < initialTets; ++t)
+    {
+      if (mesh.isDeleted(t))
+        continue;
+      const double* c[4];
+      double hc[4];
+      double bmin[3], bmax[3];
+      double hlo = std::numeric_limits<double>::max(), hhi = 0;
+      for (int i = 0; i < 4; ++i)
+      {
+        c[i] = mesh.point(mesh.vertex(t, i));
+        hc[i] = h[mesh.vertex(t, i)];
+        hlo = std::min(hlo, hc[i]);
+        hhi = std::max(hhi, hc[i]);
+        for (int k = 0; k < 3; ++k)
+        {
+          bmin[k] = i == 0 ? c[i][k] : std::min(bmin[k], c[i][k]);
+          bmax[k] = i == 0 ? c[i][k] : std::max(bmax[k], c[i][k]);
+        }
+      }
+      // Signed volume terms for the barycentric test: faces opposite each corner.
+      const double total = det3(c[0], c[1], c[2], c[3]);
+      if (!(std::fabs(total) > 0))
+        continue;
+      const int levelLo = background ? 0 : levelOfSize(hlo);
+      const int levelHi = background ? 0 : levelOfSize(hhi);
+      for (int level = levelLo; level <= levelHi; ++level)
+      {
+        const double a = options.latticeSpacing * minH * std::pow(ratio, level);
+        for (int sub = 0; sub < 2; ++sub)
+        {
+          const double shift = sub ? 0.5 : 0.0;
+          std::int64_t first[3], last[3];
+          for (int k = 0; k < 3; ++k)
+          {
+            first[k] = static_cast<std::int64_t>(std::ceil((bmin[k] - lo[k]) / a - shift));
+            last[k] = static_cast<std::int64_t>(std::floor((bmax[k] - lo[k]) / a - shift));
+          }
+          for (std::int64_t i = first[0]; i <= last[0]; ++i)
+            for (std::int64_t j = first[1]; j <= last[1]; ++j)
+              for (std::int64_t k = first[2]; k <= last[2]; ++k)
+              {
+                const std::uint64_t key = (static_cast<std::uint64_t>(level & 63) << 58) |
+                  (static_cast<std::uint64_t>(sub) << 57) |
+                  ((static_cast<std::uint64_t>(i) & 0x7FFFF) << 38) |
+                  ((static_cast<std::uint64_t>(j) & 0x7FFFF) << 19) |
+                  (static_cast<std::uint64_t>(k) & 0x7FFFF);
+                // A deterministic shift of up to +-latticeJitter/2 a per coordinate, hashed from
+                // the key (see the option).
+                double p[3] = {
+                  lo[0] + (i + shift) * a, lo[1] + (j + shift) * a, lo[2] + (k + shift) * a
+                };
+                if (jitter > 0)
+                {
+                  std::uint64_t x = key * 0x9E3779B97F4A7C15ULL;
+                  for (int d = 0; d < 3; ++d)
+                  {
+                    x ^= x >> 29;
+                    x *= 0xBF58476D1CE4E5B9ULL;
+                    x ^= x >> 32;
+                    p[d] += jitter * a * ((x >> 11) * (1.0 / 9007199254740992.0) - 0.5);
+                  }
+                }
+                const double b0 = det3(p, c[1], c[2], c[3]) / total;
+                const double b1 = det3(c[0], p, c[2], c[3]) / total;
+                const double b2 = det3(c[0], c[1], p, c[3]) / total;
+                const double b3 = det3(c[0], c[1], c[2], p) / total;
+                // Closed, with a margin: a point on a face shared by two tets is found from both
+                // (the key removes the duplicate), never from neither through rounding.
+                if (b0 < -1e-9 || b1 < -1e-9 || b2 < -1e-9 || b3 < -1e-9)
+                  continue;
+                double hp;
+                if (background)
+                {
+                  hp = background(p);
+                  if (!(hp > 0) || !std::isfinite(hp))
+                    continue;
+                  hp = scaleAndClampSize(hp, sizeOptions);
+                  // One lattice only with a background field: where it matches.
+                  if (std::fabs(std::log(hp / a * options.latticeSpacing)) > 0.5 * logRatio)
+                    continue;
+                }
+                else
+                {
+                  hp = interpolateSize(p, c, hc, sizeOptions.interpolationPower);
+                  if (sizeOptions.minSize > 0)
+                    hp = std::max(hp, sizeOptions.minSize);
+                  if (sizeOptions.maxSize > 0)
+                    hp = std::min(hp, sizeOptions.maxSize);
+                  if (levelOfSize(hp) != level)
+                    continue;
+                }
+                if (!taken.insert(key).second)
+                  continue;
+                points.push_back({ hilbertKey(p),
+                  { p[0], p[1], p[2] },
+                  hp,
+                  t,
+                  { mesh.vertex(t, 0), mesh.vertex(t, 1), mesh.vertex(t, 2), mesh.vertex(t, 3) } });
+              }
+        }
+      }
+    }
+    std::sort(points.begin(),
+      points.end(),
+      [](const LatticePoint& x, const LatticePoint& y)
+      {
+        if (x.order != y.order)
+          return x.order < y.order;
+        return std::lexicographical_compare(x.p, x.p + 3, y.p, y.p + 3);
+      });
+    // The initial tets are deleted as points go in: remember their regions.
+    std::vector<std::int32_t> initialRegion(region.begin(), region.begin() + initialTets);
+    TetId hint = -1;
+    for (const LatticePoint& q : points)
+    {
+      if (result.insertedPoints >= budget)
+      {
+        result.budgetReached = true;
+        break;
+      }
+      // Walk from the last insertion (close, in Hilbert order), else from the corners of the
+      // initial tet that contained q (the segment from a corner to q lies in that tet, so
+      // inside the domain even when it is not convex); the exhaustive search last.
+      TetId container = walkToPoint(mesh, q.p, hint);
+      for (int i = 0; i < 4 && container < 0; ++i)
+        container = walkToPoint(mesh, q.p, vertexTet[q.corner[i]]);
+      if (container < 0)
+        container = locatePoint(mesh, q.p, q.tet);
+      if (container < 0 || region[container] != initialRegion[q.tet])
+        continue;
+      const TetId made =
+        tryInsert(q.p, container, q.h, initialRegion[q.tet], options.latticeBoundaryDistance);
+      if (made < 0)
+        continue;
+      hint = made;
+      ++result.insertedPoints;
+      ++result.latticePoints;
+      if (progress && (result.insertedPoints & 1023) == 0)
+      {
+        const double fraction = std::min(
+          0.99, result.insertedPoints / std::max(1.0, result.estimatedPoints - initialCount));
+        if (!progress(fraction))
+          return finish(false, "refineInterior: aborted");
+      }
+    }
+  }
+
   for (int round = 0; round < options.maxRounds; ++round)
   {
-    if (round > 0)
+    if (round > 0 || result.latticePoints > 0)
       graph.build(mesh);
     if (sizeOptions.gradation > 1)
       limitGradation(mesh.coords.data(),
@@ -649,62 +983,9 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       const TetId container = locatePoint(mesh, p, t);
       if (container < 0 || region[container] != region[t])
         continue;
-      double hp;
-      if (background)
-      {
-        hp = background(p);
-        hp = hp > 0 && std::isfinite(hp) ? scaleAndClampSize(hp, sizeOptions)
-                                         : 0.5 * (h[c.a] + h[c.b]);
-      }
-      else
-      {
-        const double* corners[4];
-        double hc[4];
-        for (int i = 0; i < 4; ++i)
-        {
-          const VertexId w = mesh.vertex(container, i);
-          corners[i] = mesh.point(w);
-          hc[i] = h[w];
-        }
-        hp = interpolateSize(p, corners, hc, sizeOptions.interpolationPower);
-        // Interpolated from scaled sizes: clamp only.
-        if (sizeOptions.minSize > 0)
-          hp = std::max(hp, sizeOptions.minSize);
-        if (sizeOptions.maxSize > 0)
-          hp = std::min(hp, sizeOptions.maxSize);
-      }
-      if (checkProximity && grid.hasNear(p, hp, mesh.coords, h))
-      {
-        ++result.rejectedNearVertex;
+      const double hp = sizeAt(p, container, 0.5 * (h[c.a] + h[c.b]));
+      if (tryInsert(p, container, hp, region[t], options.minBoundaryDistance) < 0)
         continue;
-      }
-      if (options.minBoundaryDistance > 0 &&
-        nearConstrainedFace(container, p, options.minBoundaryDistance * hp))
-      {
-        ++result.rejectedNearBoundary;
-        continue;
-      }
-      const VertexId v = mesh.addVertex(p[0], p[1], p[2]);
-      const InsertResult inserted = insertVertex(mesh, v, container, *workspace);
-      if (inserted.status != InsertStatus::Inserted)
-      {
-        mesh.coords.resize(3 * static_cast<std::size_t>(v));
-        ++result.rejectedByKernel;
-        continue;
-      }
-      const std::int32_t r = region[t];
-      h.push_back(hp);
-      region.resize(static_cast<std::size_t>(mesh.tetCapacity()), -1);
-      vertexTet.resize(static_cast<std::size_t>(mesh.vertexCount()), -1);
-      starOf(mesh, inserted.tet, v, star);
-      for (TetId u : star)
-      {
-        region[u] = r;
-        for (int i = 0; i < 4; ++i)
-          vertexTet[mesh.vertex(u, i)] = u;
-      }
-      if (checkProximity)
-        grid.insert(v, p, hp);
       ++result.insertedPoints;
       ++insertedThisRound;
       if (progress && (result.insertedPoints & 1023) == 0)
