@@ -31,8 +31,10 @@ public:
 
   OptimizationResult run(const std::function<bool(double)>& progress);
   // Recomputes the "after" statistics (Q, dihedral, share below this optimizer's target).
+  // The mesh may have been changed by another optimizer since: the cache is dropped.
   void summarizeAfter(OptimizationResult& r) const
   {
+    ctx_.invalidateAll();
     summarize(
       r.minQualityAfter, r.meanAfter, r.minDihedralAfter, r.shareBelowTargetAfter, r.tetsAfter);
   }
@@ -63,7 +65,7 @@ void Optimizer::summarize(double& minQ,
   {
     if (ctx_.mesh.isDeleted(t))
       continue;
-    TetEval e = ctx_.evalTet(t);
+    TetEval e = ctx_.quality(t);
     minQ = std::min(minQ, e.q);
     minDih = std::min(minDih, e.dih);
     sum += e.q;
@@ -87,7 +89,10 @@ void Optimizer::apply(const LocalMove& mv, std::vector<TetId>& created)
   if (ctx_.rm.region.size() < static_cast<std::size_t>(ctx_.mesh.tetCapacity()))
     ctx_.rm.region.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()), region);
   for (TetId t : created)
+  {
     ctx_.rm.region[static_cast<std::size_t>(t)] = region;
+    ctx_.invalidate(t);
+  }
   if (mv.kind == 0)
     ++res_.flips23;
   else if (mv.kind == 2)
@@ -213,7 +218,7 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
       for (TetId t = 0; t < ctx_.mesh.tetCapacity(); ++t)
         if (!ctx_.mesh.isDeleted(t))
         {
-          double s = ctx_.evalTet(t).score;
+          double s = ctx_.quality(t).score;
           if (s < ctx_.options.qualityTarget)
             bad.push_back({ s, t });
         }
@@ -280,7 +285,7 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
         }
         ++changes;
         for (TetId c : created)
-          if (ctx_.evalTet(c).score < ctx_.options.qualityTarget)
+          if (ctx_.quality(c).score < ctx_.options.qualityTarget)
             queue.push_back({ c, ctx_.verts(c) });
       }
     }
