@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <deque>
 #include <utility>
 
@@ -43,12 +44,68 @@ private:
   void summarize(double& minQ, double& meanQ, double& minDih, double& share, int& count) const;
   void apply(const LocalMove& mv, std::vector<TetId>& created);
   bool improveTet(TetId t, std::vector<TetId>& created);
+  // Smoothing through the memo below: false without trying when v's ball is unchanged
+  // since v last failed to move.
+  bool smooth(VertexId v);
+  // Marks the vertices of tet t (or of every tet of `tets`) as changed now.
+  void touch(TetId t);
+  void touch(const std::vector<TetId>& tets)
+  {
+    for (TetId t : tets)
+      touch(t);
+  }
+  bool unchangedSince(VertexId v, std::uint64_t stamp) const
+  {
+    const std::size_t i = static_cast<std::size_t>(v);
+    return i < changed_.size() && changed_[i] <= stamp;
+  }
 
   Context ctx_;
   std::vector<TetId> star_;
   OptimizationResult res_;
   bool insertionPass_ = false; // the previous pass changed nothing: try insertion
+  // Memo of failures (a failed search is not repeated on an unchanged neighbourhood; the
+  // floors only rise, so it would fail again): changed_[v] is the clock of the last change
+  // of a tet incident to v, smoothFailed_[v] when smoothing v last failed, tetFailed_[t]
+  // when no topological move was found for tet t (with the vertices tetFailedVerts_[t]).
+  std::uint64_t clock_ = 1;
+  std::vector<std::uint64_t> changed_, smoothFailed_, tetFailed_;
+  std::vector<TetVertices> tetFailedVerts_;
 };
+
+void Optimizer::touch(TetId t)
+{
+  for (int i = 0; i < 4; ++i)
+  {
+    const std::size_t v = static_cast<std::size_t>(ctx_.mesh.vertex(t, i));
+    if (v >= changed_.size())
+    {
+      changed_.resize(v + 1, 1);
+      smoothFailed_.resize(v + 1, 0);
+    }
+    changed_[v] = clock_;
+  }
+}
+
+bool Optimizer::smooth(VertexId v)
+{
+  const std::size_t i = static_cast<std::size_t>(v);
+  if (i < smoothFailed_.size() && smoothFailed_[i] >= changed_[i])
+    return false;
+  ++clock_;
+  if (smoothVertex(ctx_, v, star_))
+  {
+    touch(star_);
+    return true;
+  }
+  if (i >= smoothFailed_.size())
+  {
+    changed_.resize(i + 1, 1);
+    smoothFailed_.resize(i + 1, 0);
+  }
+  smoothFailed_[i] = clock_;
+  return false;
+}
 
 void Optimizer::summarize(double& minQ,
   double& meanQ,
@@ -88,10 +145,12 @@ void Optimizer::apply(const LocalMove& mv, std::vector<TetId>& created)
   replaceTets(ctx_.mesh, ctx_.index, mv.oldTets, mv.newTets, &created);
   if (ctx_.rm.region.size() < static_cast<std::size_t>(ctx_.mesh.tetCapacity()))
     ctx_.rm.region.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()), region);
+  ++clock_;
   for (TetId t : created)
   {
     ctx_.rm.region[static_cast<std::size_t>(t)] = region;
     ctx_.invalidate(t);
+    touch(t);
   }
   if (mv.kind == 0)
     ++res_.flips23;
@@ -107,6 +166,12 @@ void Optimizer::apply(const LocalMove& mv, std::vector<TetId>& created)
 
 bool Optimizer::improveTet(TetId t, std::vector<TetId>& created)
 {
+  const TetVertices tv = ctx_.verts(t);
+  const std::size_t ti = static_cast<std::size_t>(t);
+  if (!insertionPass_ && ti < tetFailed_.size() && tetFailedVerts_[ti] == tv &&
+    unchangedSince(tv[0], tetFailed_[ti]) && unchangedSince(tv[1], tetFailed_[ti]) &&
+    unchangedSince(tv[2], tetFailed_[ti]) && unchangedSince(tv[3], tetFailed_[ti]))
+    return false; // failed before, and nothing around it has changed since
   LocalMove best, cand;
   bool found = false;
   auto consider = [&](bool ok)
@@ -130,11 +195,20 @@ bool Optimizer::improveTet(TetId t, std::vector<TetId>& created)
   if (!found)
   {
     if (!insertionPass_ || !findVertexInsertion(ctx_, t, best))
+    {
+      if (ti >= tetFailed_.size())
+      {
+        tetFailed_.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()), 0);
+        tetFailedVerts_.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()));
+      }
+      tetFailed_[ti] = clock_;
+      tetFailedVerts_[ti] = tv;
       return false;
+    }
     ctx_.fixed.resize(static_cast<std::size_t>(ctx_.mesh.vertexCount()), 0);
     apply(best, created);
     ++res_.insertedVertices;
-    if (ctx_.options.smoothing && smoothVertex(ctx_, ctx_.mesh.vertexCount() - 1, star_))
+    if (ctx_.options.smoothing && smooth(ctx_.mesh.vertexCount() - 1))
     {
       ++res_.smoothedVertices;
       created = star_; // the new vertex's ball, whatever it moved
@@ -185,6 +259,8 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
           ctx_.fixed[static_cast<std::size_t>(ctx_.mesh.vertex(t, kFaceVertices[f][k]))] = 1;
   }
   ctx_.index.rebuild(ctx_.mesh);
+  changed_.assign(nv, 1);
+  smoothFailed_.assign(nv, 0);
 
   std::vector<TetId> created;
   // Polled every few hundred moves, not only between passes, so that an abort or a caller's
@@ -244,7 +320,7 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
         if (seen[static_cast<std::size_t>(v)])
           continue;
         seen[static_cast<std::size_t>(v)] = 1;
-        if (smoothVertex(ctx_, v, star_))
+        if (smooth(v))
         {
           ++changes;
           ++res_.smoothedVertices;
@@ -272,7 +348,7 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
           bool moved = false;
           created.clear();
           for (VertexId v : tv)
-            if (!ctx_.fixed[static_cast<std::size_t>(v)] && smoothVertex(ctx_, v, star_))
+            if (!ctx_.fixed[static_cast<std::size_t>(v)] && smooth(v))
             {
               moved = true;
               ++res_.smoothedVertices;
