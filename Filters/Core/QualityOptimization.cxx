@@ -31,10 +31,15 @@ public:
   }
 
   OptimizationResult run(const std::function<bool(double)>& progress);
+  // The size field, grown by the vertices this optimizer inserted (null without one).
+  const std::vector<double>* sizes() const { return ctx_.size; }
   // Recomputes the "after" statistics (Q, dihedral, share below this optimizer's target).
-  // The mesh may have been changed by another optimizer since: the cache is dropped.
-  void summarizeAfter(OptimizationResult& r) const
+  // The mesh may have been changed by another optimizer since: the cache is dropped and the
+  // sizes are those of `grown` (the other optimizer's, with its inserted vertices).
+  void summarizeAfter(OptimizationResult& r, const std::vector<double>* grown)
   {
+    if (grown && ctx_.size)
+      ctx_.sizeCopy = *grown;
     ctx_.invalidateAll();
     summarize(
       r.minQualityAfter, r.meanAfter, r.minDihedralAfter, r.shareBelowTargetAfter, r.tetsAfter);
@@ -44,6 +49,8 @@ private:
   void summarize(double& minQ, double& meanQ, double& minDih, double& share, int& count) const;
   void apply(const LocalMove& mv, std::vector<TetId>& created);
   bool improveTet(TetId t, std::vector<TetId>& created);
+  // Vertex insertion at tet t (VertexInsertion.h), memoised like the other searches.
+  bool insertVertex(TetId t, std::vector<TetId>& created);
   // Smoothing through the memo below: false without trying when v's ball is unchanged
   // since v last failed to move.
   bool smooth(VertexId v);
@@ -69,8 +76,8 @@ private:
   // of a tet incident to v, smoothFailed_[v] when smoothing v last failed, tetFailed_[t]
   // when no topological move was found for tet t (with the vertices tetFailedVerts_[t]).
   std::uint64_t clock_ = 1;
-  std::vector<std::uint64_t> changed_, smoothFailed_, tetFailed_;
-  std::vector<TetVertices> tetFailedVerts_;
+  std::vector<std::uint64_t> changed_, smoothFailed_, tetFailed_, insertFailed_;
+  std::vector<TetVertices> tetFailedVerts_, insertFailedVerts_;
 };
 
 void Optimizer::touch(TetId t)
@@ -164,14 +171,45 @@ void Optimizer::apply(const LocalMove& mv, std::vector<TetId>& created)
     ++res_.edgeRemovals;
 }
 
+bool Optimizer::insertVertex(TetId t, std::vector<TetId>& created)
+{
+  const TetVertices tv = ctx_.verts(t);
+  const std::size_t ti = static_cast<std::size_t>(t);
+  if (ti < insertFailed_.size() && insertFailedVerts_[ti] == tv &&
+    unchangedSince(tv[0], insertFailed_[ti]) && unchangedSince(tv[1], insertFailed_[ti]) &&
+    unchangedSince(tv[2], insertFailed_[ti]) && unchangedSince(tv[3], insertFailed_[ti]))
+    return false;
+  LocalMove mv;
+  if (!findVertexInsertion(ctx_, t, mv))
+  {
+    if (ti >= insertFailed_.size())
+    {
+      insertFailed_.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()), 0);
+      insertFailedVerts_.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()));
+    }
+    insertFailed_[ti] = clock_;
+    insertFailedVerts_[ti] = tv;
+    return false;
+  }
+  ctx_.fixed.resize(static_cast<std::size_t>(ctx_.mesh.vertexCount()), 0);
+  apply(mv, created);
+  ++res_.insertedVertices;
+  if (ctx_.options.smoothing && smooth(ctx_.mesh.vertexCount() - 1))
+  {
+    ++res_.smoothedVertices;
+    created = star_; // the new vertex's ball, whatever it moved
+  }
+  return true;
+}
+
 bool Optimizer::improveTet(TetId t, std::vector<TetId>& created)
 {
   const TetVertices tv = ctx_.verts(t);
   const std::size_t ti = static_cast<std::size_t>(t);
-  if (!insertionPass_ && ti < tetFailed_.size() && tetFailedVerts_[ti] == tv &&
+  if (ti < tetFailed_.size() && tetFailedVerts_[ti] == tv &&
     unchangedSince(tv[0], tetFailed_[ti]) && unchangedSince(tv[1], tetFailed_[ti]) &&
     unchangedSince(tv[2], tetFailed_[ti]) && unchangedSince(tv[3], tetFailed_[ti]))
-    return false; // failed before, and nothing around it has changed since
+    return insertionPass_ && insertVertex(t, created); // nothing changed since it failed
   LocalMove best, cand;
   bool found = false;
   auto consider = [&](bool ok)
@@ -194,26 +232,14 @@ bool Optimizer::improveTet(TetId t, std::vector<TetId>& created)
   }
   if (!found)
   {
-    if (!insertionPass_ || !findVertexInsertion(ctx_, t, best))
+    if (ti >= tetFailed_.size())
     {
-      if (ti >= tetFailed_.size())
-      {
-        tetFailed_.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()), 0);
-        tetFailedVerts_.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()));
-      }
-      tetFailed_[ti] = clock_;
-      tetFailedVerts_[ti] = tv;
-      return false;
+      tetFailed_.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()), 0);
+      tetFailedVerts_.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()));
     }
-    ctx_.fixed.resize(static_cast<std::size_t>(ctx_.mesh.vertexCount()), 0);
-    apply(best, created);
-    ++res_.insertedVertices;
-    if (ctx_.options.smoothing && smooth(ctx_.mesh.vertexCount() - 1))
-    {
-      ++res_.smoothedVertices;
-      created = star_; // the new vertex's ball, whatever it moved
-    }
-    return true;
+    tetFailed_[ti] = clock_;
+    tetFailedVerts_[ti] = tv;
+    return insertionPass_ && insertVertex(t, created);
   }
   apply(best, created);
   return true;
@@ -302,10 +328,10 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
       return bad;
     };
 
-    if (ctx_.options.smoothing)
+    auto smoothBad = [&](const std::vector<std::pair<double, TetId>>& bad)
     {
       std::vector<VertexId> vs;
-      for (const auto& b : collectBad())
+      for (const auto& b : bad)
         for (int i = 0; i < 4; ++i)
         {
           VertexId v = ctx_.mesh.vertex(b.second, i);
@@ -326,6 +352,15 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
           ++res_.smoothedVertices;
         }
       }
+    };
+    // A smoothing sweep over the vertices of the bad tets first, when they are many (a
+    // poor mesh: the sweep lifts whole regions at once); when they are few, the worst-first
+    // queue below (topological moves, then smoothing) does better, and much faster.
+    if (ctx_.options.smoothing)
+    {
+      std::vector<std::pair<double, TetId>> bad = collectBad();
+      if (static_cast<double>(bad.size()) > 0.1 * ctx_.mesh.liveTetCount())
+        smoothBad(bad);
     }
 
     if (ctx_.options.flips)
@@ -354,8 +389,17 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
               ++res_.smoothedVertices;
               created.insert(created.end(), star_.begin(), star_.end());
             }
-          if (!moved)
+          // Still stuck: vertex insertion right away when enabled (Klingner-Shewchuk).
+          if (!moved && !(ctx_.options.insertion && !insertionPass_ && insertVertex(t, created)))
             continue;
+          if (!moved)
+          {
+            ++changes;
+            for (TetId c : created)
+              if (ctx_.quality(c).score < ctx_.options.qualityTarget)
+                queue.push_back({ c, ctx_.verts(c) });
+            continue;
+          }
           std::sort(created.begin(), created.end());
           created.erase(std::unique(created.begin(), created.end()), created.end());
         }
@@ -416,7 +460,7 @@ OptimizationResult optimizeMesh(RegionMesh& mesh,
   std::function<bool(double)> secondProgress;
   if (progress)
     secondProgress = [&](double x) { return progress(0.5 + 0.5 * x); };
-  Optimizer second(mesh, o2, vertexSize);
+  Optimizer second(mesh, o2, first.sizes());
   OptimizationResult r2 = second.run(secondProgress);
   r.ok = r2.ok;
   r.error = r2.error;
@@ -428,7 +472,7 @@ OptimizationResult optimizeMesh(RegionMesh& mesh,
   r.insertedVertices += r2.insertedVertices;
   r.passesRun += r2.passesRun;
   r.seconds += r2.seconds;
-  first.summarizeAfter(r);
+  first.summarizeAfter(r, second.sizes());
   return r;
 }
 
