@@ -44,7 +44,7 @@ enum class QualityMeasure
 
 struct OptimizationOptions
 {
-  int passes = 3;             // rounds of (smoothing, topological moves) over the bad tets
+  int passes = 3; // rounds of (smoothing, topological moves) over the bad tets
   // Work on tets whose measure (in [0,1]) is below this. 0.35 rather than the 0.3 users
   // check against: the margin is what lets the dihedral stage move vertices without pushing
   // tets below Q 0.3 (on the test surfaces: share of Q < 0.3 back to 0, and 2-7 degrees more
