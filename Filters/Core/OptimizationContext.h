@@ -78,10 +78,10 @@ public:
     {
       const std::vector<double>& h = *size;
       double hh[4] = { h[b], h[a], h[c], h[d] };
-      s = measureTetScaled(P(b), P(a), P(c), P(d), hh);
+      s = measureTetForOptimization(P(b), P(a), P(c), P(d), hh);
     }
     else
-      s = measureTet(P(b), P(a), P(c), P(d));
+      s = measureTetForOptimization(P(b), P(a), P(c), P(d), nullptr);
     TetEval e;
     e.q = s.signedVolume > 0 ? s.quality : 0;
     e.dih = s.signedVolume > 0 ? s.minDihedral : 0;

@@ -43,7 +43,11 @@ struct RawShape
   double minDihedral, maxDihedral;
 };
 
-RawShape measureRaw(const double* a, const double* b, const double* c, const double* d)
+RawShape measureRaw(const double* a,
+  const double* b,
+  const double* c,
+  const double* d,
+  bool withMaxDihedral = true)
 {
   const double* p[4] = { a, b, c, d };
   RawShape s{};
@@ -88,7 +92,8 @@ RawShape measureRaw(const double* a, const double* b, const double* c, const dou
   if (lowCosine <= 1.0)
   {
     s.minDihedral = std::min(s.minDihedral, angle(lowCosine));
-    s.maxDihedral = std::max(s.maxDihedral, angle(highCosine));
+    if (withMaxDihedral)
+      s.maxDihedral = std::max(s.maxDihedral, angle(highCosine));
   }
   if (degenerate)
     s.minDihedral = std::min(s.minDihedral, 0.0);
@@ -122,7 +127,23 @@ TetShape measureTetScaled(const double* a,
   const double* d,
   const double h[4])
 {
-  RawShape s = measureRaw(a, b, c, d);
+  return measureTetForOptimization(a, b, c, d, h, true);
+}
+
+TetShape measureTetForOptimization(const double* a,
+  const double* b,
+  const double* c,
+  const double* d,
+  const double* h,
+  bool withMaxDihedral)
+{
+  RawShape s = measureRaw(a, b, c, d, withMaxDihedral);
+  if (!h)
+  {
+    double inradius = s.areaSum > 0 ? 3.0 * s.volume / s.areaSum : 0.0;
+    double longest = *std::max_element(s.edgeLength, s.edgeLength + 6);
+    return finish(s, inradius, longest);
+  }
   double longest = 0.0, inverseSum = 0.0;
   for (int e = 0; e < 6; ++e)
   {
