@@ -50,8 +50,9 @@ options:
   --gradation G         largest size ratio between neighbours one h apart (default 1.5)
   --no-optimize         skip quality optimisation
   --passes N            optimisation passes (default 3)
-  --quality-target Q    optimise tets below this quality (default 0.3)
+  --quality-target Q    optimise tets below this quality (default 0.35)
   --dihedral-target D   then raise the smallest dihedral angles towards D degrees
+                        (default 25; 0: no dihedral stage)
   --stats               print the quality summary of the result
   --holes               enclosed shells are holes instead of regions of their own
   --max-steiner N       budget of recovery Steiner points (default 100 + 4 per triangle)
@@ -94,8 +95,8 @@ int RunMesh(int argc, char* argv[])
   bool stats = false, holes = false, check = true, quiet = false, boundaryOnly = false,
        optimize = true;
   int maxSteiner = -1, passes = 3;
-  double timeLimit = 0, memoryLimit = 0, dihedralTarget = 0, size = 0, sizeScale = 1, minSize = 0,
-         maxSize = 0, gradation = 1.5, qualityTarget = 0.3;
+  double timeLimit = 0, memoryLimit = 0, dihedralTarget = 25, size = 0, sizeScale = 1, minSize = 0,
+         maxSize = 0, gradation = 1.5, qualityTarget = 0.35;
   std::string sizeArray, background, backgroundArray = "h";
   // Parses the number after option argv[i]; false (and a message) when it is not one.
   auto number = [&](int& i, double low, double& value)

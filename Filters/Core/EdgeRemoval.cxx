@@ -12,8 +12,13 @@ namespace optimization
 
 bool findEdgeRemoval(const Context& ctx, TetId t, VertexId p, VertexId q, LocalMove& out)
 {
-  std::vector<TetId> shell;
-  std::vector<VertexId> ring;
+  // Scratch reused between calls (this runs for every edge of every bad tet).
+  thread_local std::vector<TetId> shell;
+  thread_local std::vector<VertexId> ring;
+  thread_local std::vector<WorstOf> tri;
+  thread_local std::vector<double> best;
+  thread_local std::vector<int> choice;
+  thread_local std::vector<std::pair<int, int>> stack;
   if (!edgeShell(ctx.mesh, t, p, q, shell, ring))
     return false;
   const int n = static_cast<int>(ring.size());
@@ -28,26 +33,41 @@ bool findEdgeRemoval(const Context& ctx, TetId t, VertexId p, VertexId q, LocalM
       if (opp != p && opp != q && ctx.mesh.isConstrained(s, f))
         return false; // a face around the edge is a constraint
     }
-    oldMin.add(ctx.evalTet(s));
+    oldMin.add(ctx.quality(s));
   }
-  // Triangle (i<j<k) of the ring gives tets (ri,rj,rk,q) and (rj,ri,rk,p).
+  // A tet that breaks the acceptance rule on its own (score not above the shell's worst, or
+  // a guarded measure below its floor) rules out every triangulation containing it: such
+  // ring triangles are pruned before their second tet is even measured.
+  const double qFloor = std::min(oldMin.q, ctx.floorQ);
+  const double dihFloor = std::min(oldMin.dih, ctx.floorDih);
+  auto usable = [&](const TetEval& e)
+  { return e.score > oldMin.score && e.q >= qFloor && e.dih >= dihFloor; };
+  // Triangle (i<j<k) of the ring gives tets (ri,rj,rk,q) and (rj,ri,rk,p); tri holds the
+  // worst of the two, score -1 when pruned or not positive.
   const int n2 = n * n;
-  std::vector<double> tri(static_cast<std::size_t>(n2 * n), -1);
-  auto triScore = [&](int i, int j, int k) -> double&
+  tri.assign(static_cast<std::size_t>(n2 * n), WorstOf());
+  auto triAt = [&](int i, int j, int k) -> WorstOf&
   { return tri[static_cast<std::size_t>(i * n2 + j * n + k)]; };
   for (int i = 0; i < n; ++i)
     for (int j = i + 1; j < n; ++j)
       for (int k = j + 1; k < n; ++k)
       {
-        double s = -1;
-        if (ctx.positive(ring[i], ring[j], ring[k], q) &&
-          ctx.positive(ring[j], ring[i], ring[k], p))
-          s = std::min(ctx.eval(ring[i], ring[j], ring[k], q).score,
-            ctx.eval(ring[j], ring[i], ring[k], p).score);
-        triScore(i, j, k) = s;
+        WorstOf& w = triAt(i, j, k);
+        w.score = -1;
+        if (!ctx.positive(ring[i], ring[j], ring[k], q))
+          continue;
+        const TetEval up = ctx.eval(ring[i], ring[j], ring[k], q);
+        if (!usable(up) || !ctx.positive(ring[j], ring[i], ring[k], p))
+          continue;
+        const TetEval down = ctx.eval(ring[j], ring[i], ring[k], p);
+        if (!usable(down))
+          continue;
+        w = WorstOf();
+        w.add(up);
+        w.add(down);
       }
-  std::vector<double> best(static_cast<std::size_t>(n2), -1);
-  std::vector<int> choice(static_cast<std::size_t>(n2), -1);
+  best.assign(static_cast<std::size_t>(n2), -1);
+  choice.assign(static_cast<std::size_t>(n2), -1);
   for (int i = 0; i + 1 < n; ++i)
     best[static_cast<std::size_t>(i * n + i + 1)] = kInf;
   for (int len = 2; len < n; ++len)
@@ -58,7 +78,7 @@ bool findEdgeRemoval(const Context& ctx, TetId t, VertexId p, VertexId q, LocalM
       int c = -1;
       for (int k = i + 1; k < j; ++k)
       {
-        double s = std::min({ triScore(i, k, j),
+        double s = std::min({ triAt(i, k, j).score,
           best[static_cast<std::size_t>(i * n + k)],
           best[static_cast<std::size_t>(k * n + j)] });
         if (s > b)
@@ -76,7 +96,7 @@ bool findEdgeRemoval(const Context& ctx, TetId t, VertexId p, VertexId q, LocalM
   out.newTets.clear();
   out.newMin = WorstOf();
   out.kind = 1;
-  std::vector<std::pair<int, int>> stack = { { 0, n - 1 } };
+  stack.assign(1, { 0, n - 1 });
   while (!stack.empty())
   {
     auto [i, j] = stack.back();
@@ -84,12 +104,12 @@ bool findEdgeRemoval(const Context& ctx, TetId t, VertexId p, VertexId q, LocalM
     if (j - i < 2)
       continue;
     int k = choice[static_cast<std::size_t>(i * n + j)];
-    TetVertices up = { ring[i], ring[k], ring[j], q };
-    TetVertices down = { ring[k], ring[i], ring[j], p };
-    out.newTets.push_back(up);
-    out.newTets.push_back(down);
-    out.newMin.add(ctx.eval(up));
-    out.newMin.add(ctx.eval(down));
+    out.newTets.push_back({ ring[i], ring[k], ring[j], q });
+    out.newTets.push_back({ ring[k], ring[i], ring[j], p });
+    const WorstOf& w = triAt(i, k, j);
+    out.newMin.score = std::min(out.newMin.score, w.score);
+    out.newMin.q = std::min(out.newMin.q, w.q);
+    out.newMin.dih = std::min(out.newMin.dih, w.dih);
     stack.push_back({ i, k });
     stack.push_back({ k, j });
   }

@@ -96,8 +96,8 @@ bool findMultiFaceRemoval(const Context& ctx, TetId t, int f, LocalMove& out)
       WorstOf oldMin;
       for (const Sandwiched& F : faces)
       {
-        oldMin.add(ctx.evalTet(F.ta));
-        oldMin.add(ctx.evalTet(F.tb));
+        oldMin.add(ctx.quality(F.ta));
+        oldMin.add(ctx.quality(F.tb));
       }
       if (ctx.accept(newMin, oldMin) && (!found || newMin.score > out.newMin.score))
       {

@@ -78,10 +78,10 @@ public:
     {
       const std::vector<double>& h = *size;
       double hh[4] = { h[b], h[a], h[c], h[d] };
-      s = measureTetScaled(P(b), P(a), P(c), P(d), hh);
+      s = measureTetForOptimization(P(b), P(a), P(c), P(d), hh);
     }
     else
-      s = measureTet(P(b), P(a), P(c), P(d));
+      s = measureTetForOptimization(P(b), P(a), P(c), P(d), nullptr);
     TetEval e;
     e.q = s.signedVolume > 0 ? s.quality : 0;
     e.dih = s.signedVolume > 0 ? s.minDihedral : 0;
@@ -92,6 +92,30 @@ public:
   TetEval evalTet(TetId t) const
   {
     return eval(mesh.vertex(t, 0), mesh.vertex(t, 1), mesh.vertex(t, 2), mesh.vertex(t, 3));
+  }
+  // evalTet through a per-slot cache. The optimiser calls invalidate() for every tet it
+  // creates and for the ball of every vertex it moves, so an entry is never stale; do not
+  // use it for tets whose vertices are being moved tentatively (smoothing's trials).
+  TetEval quality(TetId t) const
+  {
+    const std::size_t i = static_cast<std::size_t>(t);
+    if (i >= cacheValid_.size())
+    {
+      cacheValid_.resize(static_cast<std::size_t>(mesh.tetCapacity()), 0);
+      cache_.resize(static_cast<std::size_t>(mesh.tetCapacity()));
+    }
+    if (!cacheValid_[i])
+    {
+      cache_[i] = evalTet(t);
+      cacheValid_[i] = 1;
+    }
+    return cache_[i];
+  }
+  void invalidateAll() const { std::fill(cacheValid_.begin(), cacheValid_.end(), 0); }
+  void invalidate(TetId t) const
+  {
+    if (static_cast<std::size_t>(t) < cacheValid_.size())
+      cacheValid_[static_cast<std::size_t>(t)] = 0;
   }
   // The acceptance rule: the driving measure of the changed set strictly improves, and
   // neither guarded measure drops below both its old value on the set and the mesh's
@@ -132,6 +156,10 @@ public:
   VertexTetIndex index;
   std::vector<char> fixed; // per vertex: on a constrained face, or in no tet; never moves
   double floorQ = 0, floorDih = 0;
+
+private:
+  mutable std::vector<TetEval> cache_;
+  mutable std::vector<char> cacheValid_;
 };
 
 } // namespace optimization

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <deque>
 #include <utility>
 
@@ -30,9 +31,16 @@ public:
   }
 
   OptimizationResult run(const std::function<bool(double)>& progress);
+  // The size field, grown by the vertices this optimizer inserted (null without one).
+  const std::vector<double>* sizes() const { return ctx_.size; }
   // Recomputes the "after" statistics (Q, dihedral, share below this optimizer's target).
-  void summarizeAfter(OptimizationResult& r) const
+  // The mesh may have been changed by another optimizer since: the cache is dropped and the
+  // sizes are those of `grown` (the other optimizer's, with its inserted vertices).
+  void summarizeAfter(OptimizationResult& r, const std::vector<double>* grown)
   {
+    if (grown && ctx_.size)
+      ctx_.sizeCopy = *grown;
+    ctx_.invalidateAll();
     summarize(
       r.minQualityAfter, r.meanAfter, r.minDihedralAfter, r.shareBelowTargetAfter, r.tetsAfter);
   }
@@ -41,12 +49,70 @@ private:
   void summarize(double& minQ, double& meanQ, double& minDih, double& share, int& count) const;
   void apply(const LocalMove& mv, std::vector<TetId>& created);
   bool improveTet(TetId t, std::vector<TetId>& created);
+  // Vertex insertion at tet t (VertexInsertion.h), memoised like the other searches.
+  bool insertVertex(TetId t, std::vector<TetId>& created);
+  // Smoothing through the memo below: false without trying when v's ball is unchanged
+  // since v last failed to move.
+  bool smooth(VertexId v);
+  // Marks the vertices of tet t (or of every tet of `tets`) as changed now.
+  void touch(TetId t);
+  void touch(const std::vector<TetId>& tets)
+  {
+    for (TetId t : tets)
+      touch(t);
+  }
+  bool unchangedSince(VertexId v, std::uint64_t stamp) const
+  {
+    const std::size_t i = static_cast<std::size_t>(v);
+    return i < changed_.size() && changed_[i] <= stamp;
+  }
 
   Context ctx_;
   std::vector<TetId> star_;
   OptimizationResult res_;
   bool insertionPass_ = false; // the previous pass changed nothing: try insertion
+  // Memo of failures (a failed search is not repeated on an unchanged neighbourhood; the
+  // floors only rise, so it would fail again): changed_[v] is the clock of the last change
+  // of a tet incident to v, smoothFailed_[v] when smoothing v last failed, tetFailed_[t]
+  // when no topological move was found for tet t (with the vertices tetFailedVerts_[t]).
+  std::uint64_t clock_ = 1;
+  std::vector<std::uint64_t> changed_, smoothFailed_, tetFailed_, insertFailed_;
+  std::vector<TetVertices> tetFailedVerts_, insertFailedVerts_;
 };
+
+void Optimizer::touch(TetId t)
+{
+  for (int i = 0; i < 4; ++i)
+  {
+    const std::size_t v = static_cast<std::size_t>(ctx_.mesh.vertex(t, i));
+    if (v >= changed_.size())
+    {
+      changed_.resize(v + 1, 1);
+      smoothFailed_.resize(v + 1, 0);
+    }
+    changed_[v] = clock_;
+  }
+}
+
+bool Optimizer::smooth(VertexId v)
+{
+  const std::size_t i = static_cast<std::size_t>(v);
+  if (i < smoothFailed_.size() && smoothFailed_[i] >= changed_[i])
+    return false;
+  ++clock_;
+  if (smoothVertex(ctx_, v, star_))
+  {
+    touch(star_);
+    return true;
+  }
+  if (i >= smoothFailed_.size())
+  {
+    changed_.resize(i + 1, 1);
+    smoothFailed_.resize(i + 1, 0);
+  }
+  smoothFailed_[i] = clock_;
+  return false;
+}
 
 void Optimizer::summarize(double& minQ,
   double& meanQ,
@@ -63,7 +129,7 @@ void Optimizer::summarize(double& minQ,
   {
     if (ctx_.mesh.isDeleted(t))
       continue;
-    TetEval e = ctx_.evalTet(t);
+    TetEval e = ctx_.quality(t);
     minQ = std::min(minQ, e.q);
     minDih = std::min(minDih, e.dih);
     sum += e.q;
@@ -86,8 +152,13 @@ void Optimizer::apply(const LocalMove& mv, std::vector<TetId>& created)
   replaceTets(ctx_.mesh, ctx_.index, mv.oldTets, mv.newTets, &created);
   if (ctx_.rm.region.size() < static_cast<std::size_t>(ctx_.mesh.tetCapacity()))
     ctx_.rm.region.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()), region);
+  ++clock_;
   for (TetId t : created)
+  {
     ctx_.rm.region[static_cast<std::size_t>(t)] = region;
+    ctx_.invalidate(t);
+    touch(t);
+  }
   if (mv.kind == 0)
     ++res_.flips23;
   else if (mv.kind == 2)
@@ -100,8 +171,45 @@ void Optimizer::apply(const LocalMove& mv, std::vector<TetId>& created)
     ++res_.edgeRemovals;
 }
 
+bool Optimizer::insertVertex(TetId t, std::vector<TetId>& created)
+{
+  const TetVertices tv = ctx_.verts(t);
+  const std::size_t ti = static_cast<std::size_t>(t);
+  if (ti < insertFailed_.size() && insertFailedVerts_[ti] == tv &&
+    unchangedSince(tv[0], insertFailed_[ti]) && unchangedSince(tv[1], insertFailed_[ti]) &&
+    unchangedSince(tv[2], insertFailed_[ti]) && unchangedSince(tv[3], insertFailed_[ti]))
+    return false;
+  LocalMove mv;
+  if (!findVertexInsertion(ctx_, t, mv))
+  {
+    if (ti >= insertFailed_.size())
+    {
+      insertFailed_.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()), 0);
+      insertFailedVerts_.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()));
+    }
+    insertFailed_[ti] = clock_;
+    insertFailedVerts_[ti] = tv;
+    return false;
+  }
+  ctx_.fixed.resize(static_cast<std::size_t>(ctx_.mesh.vertexCount()), 0);
+  apply(mv, created);
+  ++res_.insertedVertices;
+  if (ctx_.options.smoothing && smooth(ctx_.mesh.vertexCount() - 1))
+  {
+    ++res_.smoothedVertices;
+    created = star_; // the new vertex's ball, whatever it moved
+  }
+  return true;
+}
+
 bool Optimizer::improveTet(TetId t, std::vector<TetId>& created)
 {
+  const TetVertices tv = ctx_.verts(t);
+  const std::size_t ti = static_cast<std::size_t>(t);
+  if (ti < tetFailed_.size() && tetFailedVerts_[ti] == tv &&
+    unchangedSince(tv[0], tetFailed_[ti]) && unchangedSince(tv[1], tetFailed_[ti]) &&
+    unchangedSince(tv[2], tetFailed_[ti]) && unchangedSince(tv[3], tetFailed_[ti]))
+    return insertionPass_ && insertVertex(t, created); // nothing changed since it failed
   LocalMove best, cand;
   bool found = false;
   auto consider = [&](bool ok)
@@ -124,17 +232,14 @@ bool Optimizer::improveTet(TetId t, std::vector<TetId>& created)
   }
   if (!found)
   {
-    if (!insertionPass_ || !findVertexInsertion(ctx_, t, best))
-      return false;
-    ctx_.fixed.resize(static_cast<std::size_t>(ctx_.mesh.vertexCount()), 0);
-    apply(best, created);
-    ++res_.insertedVertices;
-    if (ctx_.options.smoothing && smoothVertex(ctx_, ctx_.mesh.vertexCount() - 1, star_))
+    if (ti >= tetFailed_.size())
     {
-      ++res_.smoothedVertices;
-      created = star_; // the new vertex's ball, whatever it moved
+      tetFailed_.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()), 0);
+      tetFailedVerts_.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()));
     }
-    return true;
+    tetFailed_[ti] = clock_;
+    tetFailedVerts_[ti] = tv;
+    return insertionPass_ && insertVertex(t, created);
   }
   apply(best, created);
   return true;
@@ -180,6 +285,8 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
           ctx_.fixed[static_cast<std::size_t>(ctx_.mesh.vertex(t, kFaceVertices[f][k]))] = 1;
   }
   ctx_.index.rebuild(ctx_.mesh);
+  changed_.assign(nv, 1);
+  smoothFailed_.assign(nv, 0);
 
   std::vector<TetId> created;
   // Polled every few hundred moves, not only between passes, so that an abort or a caller's
@@ -213,7 +320,7 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
       for (TetId t = 0; t < ctx_.mesh.tetCapacity(); ++t)
         if (!ctx_.mesh.isDeleted(t))
         {
-          double s = ctx_.evalTet(t).score;
+          double s = ctx_.quality(t).score;
           if (s < ctx_.options.qualityTarget)
             bad.push_back({ s, t });
         }
@@ -221,10 +328,10 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
       return bad;
     };
 
-    if (ctx_.options.smoothing)
+    auto smoothBad = [&](const std::vector<std::pair<double, TetId>>& bad)
     {
       std::vector<VertexId> vs;
-      for (const auto& b : collectBad())
+      for (const auto& b : bad)
         for (int i = 0; i < 4; ++i)
         {
           VertexId v = ctx_.mesh.vertex(b.second, i);
@@ -239,12 +346,21 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
         if (seen[static_cast<std::size_t>(v)])
           continue;
         seen[static_cast<std::size_t>(v)] = 1;
-        if (smoothVertex(ctx_, v, star_))
+        if (smooth(v))
         {
           ++changes;
           ++res_.smoothedVertices;
         }
       }
+    };
+    // A smoothing sweep over the vertices of the bad tets first, when they are many (a
+    // poor mesh: the sweep lifts whole regions at once); when they are few, the worst-first
+    // queue below (topological moves, then smoothing) does better, and much faster.
+    if (ctx_.options.smoothing)
+    {
+      std::vector<std::pair<double, TetId>> bad = collectBad();
+      if (static_cast<double>(bad.size()) > 0.1 * ctx_.mesh.liveTetCount())
+        smoothBad(bad);
     }
 
     if (ctx_.options.flips)
@@ -267,20 +383,29 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
           bool moved = false;
           created.clear();
           for (VertexId v : tv)
-            if (!ctx_.fixed[static_cast<std::size_t>(v)] && smoothVertex(ctx_, v, star_))
+            if (!ctx_.fixed[static_cast<std::size_t>(v)] && smooth(v))
             {
               moved = true;
               ++res_.smoothedVertices;
               created.insert(created.end(), star_.begin(), star_.end());
             }
-          if (!moved)
+          // Still stuck: vertex insertion right away when enabled (Klingner-Shewchuk).
+          if (!moved && !(ctx_.options.insertion && !insertionPass_ && insertVertex(t, created)))
             continue;
+          if (!moved)
+          {
+            ++changes;
+            for (TetId c : created)
+              if (ctx_.quality(c).score < ctx_.options.qualityTarget)
+                queue.push_back({ c, ctx_.verts(c) });
+            continue;
+          }
           std::sort(created.begin(), created.end());
           created.erase(std::unique(created.begin(), created.end()), created.end());
         }
         ++changes;
         for (TetId c : created)
-          if (ctx_.evalTet(c).score < ctx_.options.qualityTarget)
+          if (ctx_.quality(c).score < ctx_.options.qualityTarget)
             queue.push_back({ c, ctx_.verts(c) });
       }
     }
@@ -335,7 +460,7 @@ OptimizationResult optimizeMesh(RegionMesh& mesh,
   std::function<bool(double)> secondProgress;
   if (progress)
     secondProgress = [&](double x) { return progress(0.5 + 0.5 * x); };
-  Optimizer second(mesh, o2, vertexSize);
+  Optimizer second(mesh, o2, first.sizes());
   OptimizationResult r2 = second.run(secondProgress);
   r.ok = r2.ok;
   r.error = r2.error;
@@ -347,7 +472,7 @@ OptimizationResult optimizeMesh(RegionMesh& mesh,
   r.insertedVertices += r2.insertedVertices;
   r.passesRun += r2.passesRun;
   r.seconds += r2.seconds;
-  first.summarizeAfter(r);
+  first.summarizeAfter(r, second.sizes());
   return r;
 }
 

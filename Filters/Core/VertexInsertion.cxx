@@ -80,7 +80,7 @@ bool growCavity(Context& ctx, TetId t, VertexId xv, int maxCavity, LocalMove& ou
     {
       WorstOf oldMin;
       for (TetId c : cavity)
-        oldMin.add(ctx.evalTet(c));
+        oldMin.add(ctx.quality(c));
       if (ctx.accept(newMin, oldMin) && (!found || newMin.score > out.newMin.score))
       {
         found = true;

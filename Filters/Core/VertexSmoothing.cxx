@@ -30,6 +30,57 @@ WorstOf worstOfStar(const Context& ctx, const std::vector<TetId>& star, bool& va
   return s;
 }
 
+namespace
+{
+// Scratch of one smoothVertex call, reused between calls (no allocation in the hot loop).
+struct SmoothingScratch
+{
+  std::vector<double> score, trialScore; // per star tet: at the current / the trial position
+  std::vector<std::size_t> order;        // star indices, worst current score first
+  std::vector<std::array<double, 3>> grads;
+};
+
+// The ball's values at the vertex's trial position, folded into `now`; false as soon as one
+// tet is not positive (exact) or breaks the acceptance rule against `old` on its own (its
+// score not above scoreAbove >= old.score, or a guarded measure below the floor), which for
+// scoreAbove = old.score is exactly "valid && ctx.accept(now, old)". Tets are tried worst first, so
+// most rejections are decided by the first one or two.
+bool tryPosition(const Context& ctx,
+  const std::vector<TetId>& star,
+  const WorstOf& old,
+  SmoothingScratch& sc,
+  WorstOf& now,
+  double scoreAbove)
+{
+  const double qFloor = std::min(old.q, ctx.floorQ);
+  const double dihFloor = std::min(old.dih, ctx.floorDih);
+  now = WorstOf();
+  for (std::size_t i : sc.order)
+  {
+    const TetId t = star[i];
+    if (!ctx.positive(ctx.mesh.vertex(t, 0),
+          ctx.mesh.vertex(t, 1),
+          ctx.mesh.vertex(t, 2),
+          ctx.mesh.vertex(t, 3)))
+      return false;
+    const TetEval e = ctx.evalTet(t);
+    if (!(e.score > scoreAbove) || e.q < qFloor || e.dih < dihFloor)
+      return false;
+    sc.trialScore[i] = e.score;
+    now.add(e);
+  }
+  return true;
+}
+
+void rankStar(SmoothingScratch& sc)
+{
+  std::sort(sc.order.begin(),
+    sc.order.end(),
+    [&](std::size_t a, std::size_t b)
+    { return sc.score[a] < sc.score[b] || (sc.score[a] == sc.score[b] && a < b); });
+}
+} // namespace
+
 bool smoothVertex(Context& ctx, VertexId v, std::vector<TetId>& star)
 {
   if (ctx.fixed[static_cast<std::size_t>(v)])
@@ -37,12 +88,22 @@ bool smoothVertex(Context& ctx, VertexId v, std::vector<TetId>& star)
   vertexStar(ctx.mesh, ctx.index, v, star);
   if (star.empty())
     return false;
+  thread_local SmoothingScratch sc;
   double* x = &ctx.mesh.coords[3 * static_cast<std::size_t>(v)];
   const std::array<double, 3> orig = { x[0], x[1], x[2] };
-  bool valid = true;
-  const WorstOf origMin = worstOfStar(ctx, star, valid);
-  if (!valid)
-    return false;
+  // Live tets are positive (the mesh invariant); their values come from the cache.
+  WorstOf origMin;
+  sc.score.resize(star.size());
+  sc.trialScore.resize(star.size());
+  sc.order.resize(star.size());
+  for (std::size_t i = 0; i < star.size(); ++i)
+  {
+    const TetEval e = ctx.quality(star[i]);
+    origMin.add(e);
+    sc.score[i] = e.score;
+    sc.order[i] = i;
+  }
+  rankStar(sc);
   auto setPos = [&](const std::array<double, 3>& y)
   {
     x[0] = y[0];
@@ -104,36 +165,36 @@ bool smoothVertex(Context& ctx, VertexId v, std::vector<TetId>& star)
 
   std::array<double, 3> cur = orig;
   WorstOf curMin = origMin;
+  WorstOf s;
   for (const auto& cand : { wc, ideal })
   {
     setPos(cand);
-    WorstOf s = worstOfStar(ctx, star, valid);
-    if (valid && ctx.accept(s, curMin))
+    if (tryPosition(ctx, star, curMin, sc, s, curMin.score))
     {
       cur = cand;
       curMin = s;
+      sc.score.swap(sc.trialScore);
+      rankStar(sc);
     }
   }
   setPos(cur);
 
   // Ascent on the worst quality of the ball (Klingner-Shewchuk): the gradients of the
-  // tets within a margin of the worst (finite differences) span a direction that raises them
-  // all, the point of least norm in their convex hull; then backtracking along it.
-  std::vector<std::pair<double, TetId>> ranked;
-  std::vector<std::array<double, 3>> grads;
+  // tets within a margin of the worst (forward differences) span a direction that raises
+  // them all, the point of least norm in their convex hull; then backtracking along it, down
+  // to the first acceptable step.
+  auto dot = [](const std::array<double, 3>& a, const std::array<double, 3>& b)
+  { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
   for (int step = 0; step < ctx.options.smoothingSteps && lavg > 0; ++step)
   {
-    ranked.clear();
-    for (TetId t : star)
-      ranked.push_back({ ctx.evalTet(t).score, t });
-    std::sort(ranked.begin(), ranked.end());
-    const double ws = ranked[0].first;
-    grads.clear();
+    const double ws = sc.score[sc.order[0]];
+    sc.grads.clear();
     const double eps = 1e-6 * lavg;
-    for (const auto& [sc, t] : ranked)
+    for (std::size_t i : sc.order)
     {
-      if (sc > ws + 0.03 || grads.size() >= 8)
+      if (sc.score[i] > ws + 0.03 || sc.grads.size() >= 8)
         break;
+      const TetId t = star[i];
       std::array<double, 3> g;
       for (int k = 0; k < 3; ++k)
       {
@@ -144,19 +205,17 @@ bool smoothVertex(Context& ctx, VertexId v, std::vector<TetId>& star)
         x[k] = cur[k];
         g[k] = (sp - sm) / (2 * eps);
       }
-      grads.push_back(g);
+      sc.grads.push_back(g);
     }
-    auto dot = [](const std::array<double, 3>& a, const std::array<double, 3>& b)
-    { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
     // Least-norm point of the gradients' hull (Frank-Wolfe with exact line search).
-    std::array<double, 3> grad = grads[0];
-    for (int it = 0; it < 64 && grads.size() > 1; ++it)
+    std::array<double, 3> grad = sc.grads[0];
+    for (int it = 0; it < 64 && sc.grads.size() > 1; ++it)
     {
       std::size_t best = 0;
       double bd = kInf;
-      for (std::size_t i = 0; i < grads.size(); ++i)
+      for (std::size_t i = 0; i < sc.grads.size(); ++i)
       {
-        double d = dot(grads[i], grad);
+        double d = dot(sc.grads[i], grad);
         if (d < bd)
         {
           bd = d;
@@ -167,7 +226,7 @@ bool smoothVertex(Context& ctx, VertexId v, std::vector<TetId>& star)
       if (gg - bd <= 1e-12 * gg)
         break;
       std::array<double, 3> diff = {
-        grads[best][0] - grad[0], grads[best][1] - grad[1], grads[best][2] - grad[2]
+        sc.grads[best][0] - grad[0], sc.grads[best][1] - grad[1], sc.grads[best][2] - grad[2]
       };
       double dd = dot(diff, diff);
       double tstep = dd > 0 ? std::clamp(-dot(grad, diff) / dd, 0.0, 1.0) : 0.0;
@@ -177,25 +236,29 @@ bool smoothVertex(Context& ctx, VertexId v, std::vector<TetId>& star)
     double gn = std::sqrt(dot(grad, grad));
     if (!(gn > 1e-9 / lavg))
       break;
+    // Backtracking from a fifth of the mean edge: the first acceptable step, then shorter
+    // ones while they do better still.
     bool moved = false;
-    std::array<double, 3> bestY = cur;
-    WorstOf bestMin = curMin;
+    const WorstOf stepStart = curMin;
+    const std::array<double, 3> from = cur;
     for (double len = 0.2 * lavg; len > 1e-4 * lavg; len *= 0.5)
     {
       std::array<double, 3> y;
       for (int k = 0; k < 3; ++k)
-        y[k] = cur[k] + len * grad[k] / gn;
+        y[k] = from[k] + len * grad[k] / gn;
       setPos(y);
-      WorstOf s = worstOfStar(ctx, star, valid);
-      if (valid && ctx.accept(s, curMin) && (!moved || s.score > bestMin.score))
+      if (tryPosition(ctx, star, stepStart, sc, s, curMin.score))
       {
-        bestY = y;
-        bestMin = s;
+        cur = y;
+        curMin = s;
+        sc.score.swap(sc.trialScore);
         moved = true;
       }
+      else if (moved)
+        break;
     }
-    cur = bestY;
-    curMin = bestMin;
+    if (moved)
+      rankStar(sc);
     setPos(cur);
     if (!moved)
       break;
@@ -204,6 +267,8 @@ bool smoothVertex(Context& ctx, VertexId v, std::vector<TetId>& star)
   if (ctx.accept(curMin, origMin))
   {
     setPos(cur);
+    for (TetId t : star)
+      ctx.invalidate(t);
     return true;
   }
   setPos(orig);
