@@ -16,7 +16,7 @@ edges = edges not on an input triangle), and ratios vs TetMesher's default run.
 
 Tools:
   tetmesher        tetmesher mesh IN -o OUT.vtu -q --size H
-  tetmesher-dt20   ... --dihedral-target 20
+  tetmesher-dt0    ... --dihedral-target 0 (the Q stage alone, no dihedral stage)
   tetgen-q         tetgen -pq1.2a<V>   (V = h^3/(6*sqrt(2)), the volume of the regular tet of
                    edge h; TetGen may split boundary edges/faces: Steiner points on the boundary)
   tetgen-qO9       tetgen -pq1.2a<V>O9/7 (optimisation level 9 of 0-9, all operations 7 =
@@ -50,7 +50,7 @@ import benchmark as B  # noqa: E402
 ROOT = B.ROOT
 CASES = ["cube", "icosphere", "torus", "nested_spheres", "gear", "sphere", "fandisk", "knot1"]
 FINE = ["cube", "torus"]
-TOOLS = ["tetmesher", "tetmesher-dt20", "tetgen-q", "tetgen-qO9", "tetgen-qO9o150", "tetgen-Yq",
+TOOLS = ["tetmesher", "tetmesher-dt0", "tetgen-q", "tetgen-qO9", "tetgen-qO9o150", "tetgen-Yq",
          "gmsh-delaunay", "gmsh-hxt"]
 
 
@@ -94,8 +94,8 @@ def tool_job(tool, case, h, work, tetmesher):
     if tool.startswith("tetmesher"):
         out = os.path.join(d, "out.vtu")
         cmd = [tetmesher, "mesh", src, "-o", out, "-q", "--size", hs]
-        if tool == "tetmesher-dt20":
-            cmd += ["--dihedral-target", "20"]
+        if tool == "tetmesher-dt0":
+            cmd += ["--dihedral-target", "0"]
         return cmd, d, lambda: B.read_vtu(out), [out]
     if tool.startswith("tetgen"):
         inp = os.path.join(d, "in.off")
@@ -253,7 +253,7 @@ def write_outputs(args, rows, tools, command, started, finished):
                   sorted({r["case"] for r in rows if r["h_factor"] == "0.5"})))
     md.append("- tools (exact command of every run in sized.csv, column *command*): "
               "`tetmesher mesh IN -o OUT.vtu -q --size H` (*tetmesher*) and with "
-              "`--dihedral-target 20` (*tetmesher-dt20*); `tetgen -pq1.2a<V>` (*tetgen-q*), "
+              "`--dihedral-target 0` (*tetmesher-dt0*: no dihedral stage); `tetgen -pq1.2a<V>` (*tetgen-q*), "
               "`tetgen -pq1.2a<V>O9/7` (*tetgen-qO9*: optimisation level 9 = TetGen 1.5's maximum, "
               "all operations; the default is O2/7; TetGen only optimises tets with a dihedral angle above "
               "its `o/` bound, default 165 deg), `tetgen -pq1.2a<V>O9/7o/150` (*tetgen-qO9o150*: "
