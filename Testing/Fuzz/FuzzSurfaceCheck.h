@@ -17,6 +17,7 @@
 #include "Mesher.h"
 #include "Predicates.h"
 #include "SurfaceDiagnosis.h"
+#include "VolumeMesher.h"
 
 #include <algorithm>
 #include <array>
@@ -126,9 +127,29 @@ inline std::string runFuzzSurface(const std::uint8_t* data, std::size_t size)
     }
     return {};
   }
-  if (r.ok)
-    return checkMesh(s, r);
-  return {};
+  if (!r.ok)
+    return {};
+  std::string problem = checkMesh(s, r);
+  if (!problem.empty() || !s.fullPipeline || m > kMaxPipelineTriangles)
+    return problem;
+  // The whole pipeline on the accepted surface: it may refuse (a size field beyond the
+  // indices), always with a message; a mesh it returns keeps the boundary.
+  VolumeMeshOptions volumeOptions;
+  volumeOptions.boundary = options;
+  volumeOptions.refinement.maxPoints = kMaxPipelinePoints;
+  const VolumeMeshResult v = meshVolume(s.points.data(), n, s.triangles.data(), m, volumeOptions);
+  if (!v.ok)
+    return v.error.empty() ? "meshVolume failed without a message" : std::string();
+  MesherResult whole;
+  whole.ok = true;
+  whole.points = v.points;
+  whole.tets = v.tets;
+  whole.regionIds = v.regionIds;
+  whole.boundaryFaceTet = v.boundaryFaceTet;
+  whole.regionCount = v.regionCount;
+  whole.steinerPoints = static_cast<int>(v.points.size() / 3) - n;
+  problem = checkMesh(s, whole);
+  return problem.empty() ? problem : "meshVolume: " + problem;
 }
 
 } // namespace fuzz

@@ -19,6 +19,9 @@
 //     flags bit 1: also run meshSurface with validateInput = false on input that the
 //                  diagnosis refuses (the mesher must still fail cleanly, not crash)
 //     flags bit 2: DiagnosisOptions::maxRecordsPerKind = 3
+//     flags bit 3: on a surface the mesher accepts (of at most kMaxPipelineTriangles), also
+//                  run the whole pipeline, meshVolume: size field, interior points (at most
+//                  kMaxPipelinePoints), optimisation
 #pragma once
 
 #include <cstddef>
@@ -38,6 +41,7 @@ struct FuzzSurface
   bool enclosedShellsAreHoles = false;
   bool meshInvalidInput = false;
   bool limitRecords = false;
+  bool fullPipeline = false;
   std::int32_t pointCount() const { return static_cast<std::int32_t>(points.size() / 3); }
   std::int32_t triangleCount() const { return static_cast<std::int32_t>(triangles.size() / 3); }
 };
@@ -45,6 +49,8 @@ struct FuzzSurface
 // Bounds that keep one execution short.
 constexpr std::size_t kMaxPoints = 4000;
 constexpr std::size_t kMaxTriangles = 8000;
+constexpr std::int32_t kMaxPipelineTriangles = 1000;
+constexpr int kMaxPipelinePoints = 3000;
 
 inline FuzzSurface decodeFuzzSurface(const std::uint8_t* data, std::size_t size)
 {
@@ -56,6 +62,7 @@ inline FuzzSurface decodeFuzzSurface(const std::uint8_t* data, std::size_t size)
   s.enclosedShellsAreHoles = (flags & 1) != 0;
   s.meshInvalidInput = (flags & 2) != 0;
   s.limitRecords = (flags & 4) != 0;
+  s.fullPipeline = (flags & 8) != 0;
   std::size_t pos = 1;
   std::size_t n = 0;
   if (mode == 0 || mode == 1)

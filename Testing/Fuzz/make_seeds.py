@@ -127,6 +127,8 @@ def main():
                 write("%s-m%d-f%d" % (name, mode, flags),
                       encode_lattice(points, triangles, mode, flags))
         write("%s-m2" % name, encode_real(points, triangles, 2))
+        # flag 8: also the whole pipeline (size field, interior points, optimisation)
+        write("%s-m0-f8" % name, encode_lattice(points, triangles, 0, 8))
     for path in sys.argv[2:]:
         try:
             if path.lower().endswith(".off"):
@@ -143,6 +145,8 @@ def main():
         write(base + "-m2", encode_real(points, triangles, 2))
         write(base + "-m2-f3", encode_real(points, triangles, 2, 3))
         write(base + "-m3", encode_real(points, triangles, 3))
+        if len(triangles) <= 1000:
+            write(base + "-m3-f8", encode_real(points, triangles, 3, 8))
     print("make_seeds: %d seeds in %s" % (count, out_dir))
 
 
