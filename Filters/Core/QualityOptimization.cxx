@@ -71,6 +71,7 @@ private:
   std::vector<TetId> star_;
   OptimizationResult res_;
   bool insertionPass_ = false; // the previous pass changed nothing: try insertion
+  int insertionBudget_ = 0;    // options.maxInsertedVertices, resolved in run()
   // Memo of failures (a failed search is not repeated on an unchanged neighbourhood; the
   // floors only rise, so it would fail again): changed_[v] is the clock of the last change
   // of a tet incident to v, smoothFailed_[v] when smoothing v last failed, tetFailed_[t]
@@ -173,6 +174,8 @@ void Optimizer::apply(const LocalMove& mv, std::vector<TetId>& created)
 
 bool Optimizer::insertVertex(TetId t, std::vector<TetId>& created)
 {
+  if (res_.insertedVertices >= insertionBudget_)
+    return false;
   const TetVertices tv = ctx_.verts(t);
   const std::size_t ti = static_cast<std::size_t>(t);
   if (ti < insertFailed_.size() && insertFailedVerts_[ti] == tv &&
@@ -262,6 +265,8 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
     res_.minDihedralBefore,
     res_.shareBelowTargetBefore,
     res_.tetsBefore);
+  insertionBudget_ = ctx_.options.maxInsertedVertices >= 0 ? ctx_.options.maxInsertedVertices
+                                                           : 10 + res_.tetsBefore / 1000;
 
   // Vertices that never move: those of constrained faces, and those in no tet.
   ctx_.fixed.assign(nv, 1);

@@ -371,6 +371,7 @@ TEST(QualityOptimization, JitteredGridCubeReachesThresholds)
   options.passes = 30;
   options.qualityTarget = 0.45;
   options.dihedralTarget = 31.7; // 0.45 of the regular tet's
+  options.insertion = false;     // flips and smoothing alone here; insertion below
   std::vector<double> progressSeen;
   Snapshot before = snapshot(rm);
   OptimizationResult r = optimizeMesh(rm,
@@ -394,6 +395,19 @@ TEST(QualityOptimization, JitteredGridCubeReachesThresholds)
   // dihedral angle of 21.5 degrees (from 0.020 and 1.1 degrees).
   EXPECT_GE(r.minQualityAfter, 0.37);
   EXPECT_GE(r.minDihedralAfter, 21.0);
+
+  // With vertex insertion (the default) the same input reaches a higher Q min (0.415) but a
+  // lower dihedral minimum (19.4 degrees): a trade-off, pinned here so that a change shows.
+  RegionMesh withInsertion = jitteredGridCube(6);
+  options.insertion = true;
+  Snapshot beforeInsertion = snapshot(withInsertion);
+  OptimizationResult ri = optimizeMesh(withInsertion, options, nullptr);
+  report("cube 3x3 + jittered 6^3 grid, Q then dihedral, insertion", ri);
+  ASSERT_TRUE(ri.ok) << ri.error;
+  EXPECT_EQ(check(withInsertion, beforeInsertion), "");
+  EXPECT_GT(ri.insertedVertices, 0);
+  EXPECT_GE(ri.minQualityAfter, 0.40);
+  EXPECT_GE(ri.minDihedralAfter, 19.0);
 }
 
 TEST(QualityOptimization, LargerJitteredGridTiming)
@@ -515,11 +529,13 @@ std::pair<double, double> freshMinima(const RegionMesh& rm, const std::vector<do
 
 TEST(QualityOptimization, DefaultsAndReportedMinima)
 {
-  // The defaults: a Q stage to 0.35, then a dihedral stage to 25 degrees.
+  // The defaults: a Q stage to 0.35, then a dihedral stage to 25 degrees, vertex insertion as
+  // a bounded last resort.
   const OptimizationOptions defaults;
   EXPECT_EQ(defaults.qualityTarget, 0.35);
   EXPECT_EQ(defaults.dihedralTarget, 25.0);
-  EXPECT_FALSE(defaults.insertion);
+  EXPECT_TRUE(defaults.insertion);
+  EXPECT_EQ(defaults.maxInsertedVertices, -1);
 
   // The reported minima are those of the mesh (the quality cache is never stale), with one
   // stage, with two, and with two stages, a size field and inserted vertices.
@@ -606,4 +622,20 @@ TEST(QualityOptimization, ChecksRejectCorruption)
   RegionMesh inverted = rm;
   std::swap(inverted.mesh.tets[0], inverted.mesh.tets[1]);
   EXPECT_NE(check(inverted, before), "");
+}
+
+// Vertex insertion is bounded per stage: none when the budget is 0, at most the budget when
+// set, and the mesh's minimum quality never below the run without insertion's floor.
+TEST(QualityOptimization, InsertionBudget)
+{
+  for (int budget : { 0, 3 })
+  {
+    RegionMesh rm = jitteredGridCube(5);
+    OptimizationOptions options;
+    options.maxInsertedVertices = budget;
+    OptimizationResult r = optimizeMesh(rm, options, nullptr);
+    ASSERT_TRUE(r.ok) << r.error;
+    EXPECT_LE(r.insertedVertices, 2 * budget); // two stages, each with its own budget
+    EXPECT_GE(r.minQualityAfter, r.minQualityBefore);
+  }
 }
