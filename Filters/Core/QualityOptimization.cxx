@@ -72,7 +72,6 @@ private:
   OptimizationResult res_;
   bool insertionPass_ = false; // the previous pass changed nothing: try insertion
   int insertionBudget_ = 0;    // options.maxInsertedVertices, resolved in run()
-  int insertionSearches_ = 0;  // searches for an insertion, successful or not
   // Memo of failures (a failed search is not repeated on an unchanged neighbourhood; the
   // floors only rise, so it would fail again): changed_[v] is the clock of the last change
   // of a tet incident to v, smoothFailed_[v] when smoothing v last failed, tetFailed_[t]
@@ -175,11 +174,8 @@ void Optimizer::apply(const LocalMove& mv, std::vector<TetId>& created)
 
 bool Optimizer::insertVertex(TetId t, std::vector<TetId>& created)
 {
-  // Bounded in inserted vertices and in searches: on a surface with poor triangles most tets
-  // are stuck and most searches fail (Data/gear.vtp: 5 s -> 17 s with successes bounded only).
-  if (res_.insertedVertices >= insertionBudget_ || insertionSearches_ >= 8 * insertionBudget_)
+  if (res_.insertedVertices >= insertionBudget_)
     return false;
-  ++insertionSearches_;
   const TetVertices tv = ctx_.verts(t);
   const std::size_t ti = static_cast<std::size_t>(t);
   if (ti < insertFailed_.size() && insertFailedVerts_[ti] == tv &&
