@@ -95,9 +95,9 @@ bool removeVertex(TetMesh& mesh, VertexTetIndex& index, VertexId v, VertexStar& 
   FlipCost noCost;
   FlipCandidate candidate;
   std::vector<TetId> created;
-  // Passes over the neighbours: each successful edge removal takes one neighbour away for good
-  // (edge removal never creates an edge at v), so the passes end; a pass without one ends the
-  // attempt, as an unchanged neighbourhood would fail the same way again.
+  // Each successful edge removal takes one neighbour away for good (edge removal never creates
+  // an edge at v), so this ends; a pass over all neighbours without one ends the attempt, as
+  // an unchanged neighbourhood would fail the same way again.
   for (bool progress = true; progress;)
   {
     progress = false;
@@ -149,6 +149,11 @@ bool removeVertex(TetMesh& mesh, VertexTetIndex& index, VertexId v, VertexStar& 
       star.neighbourTet[w] = -1;
       --live;
       progress = true;
+      // Start again from the first neighbour: an edge that failed may be removable now, and
+      // this order (the first removable edge in star order) is the one recovery was tuned
+      // with; continuing round the list left, on Data/stator_ring.vtp, a Steiner point within
+      // rounding distance of an input triangle.
+      k = static_cast<std::size_t>(-1);
     }
   }
   clearNeighbourMarks();
