@@ -13,7 +13,7 @@ namespace
 
 // The star of the vertex being removed, kept up to date through the edge removals: its tets,
 // its neighbours in first-seen order, and for each neighbour a star tet having the edge.
-// Recomputing the star after every removed edge costs O(degree^2) per vertex, and a Steiner
+// Recomputing the star after every removed edge costs O(degree) each time, and a Steiner
 // point in a nearly co-spherical mesh (vtkSphereSource's spheres: every point on one sphere)
 // can have thousands of neighbours.
 struct VertexStar
