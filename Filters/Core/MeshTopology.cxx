@@ -168,9 +168,17 @@ bool edgeShell(const TetMesh& mesh,
 {
   shell.clear();
   ring.clear();
+  // Defensive: callers pass a live tet with the edge, and a consistent mesh keeps it along the
+  // walk. Recovery of self-intersecting input (validateInput off) breaks that (a fuzzer input,
+  // Testing/Fuzz/regressions/unchecked-self-intersection-adjacency.bin); without these checks
+  // the walk reads outside the arrays.
+  if (t < 0 || t >= mesh.tetCapacity() || mesh.isDeleted(t))
+    return false;
   TetId start = t;
   int ip = localIndex(mesh, t, p);
   int iq = localIndex(mesh, t, q);
+  if (ip < 0 || iq < 0 || ip == iq)
+    return false;
   int i = 0;
   while (i == ip || i == iq)
     ++i;
@@ -196,6 +204,8 @@ bool edgeShell(const TetMesh& mesh,
     ip = localIndex(mesh, u, p);
     iq = localIndex(mesh, u, q);
     i = localIndex(mesh, u, next);
+    if (ip < 0 || iq < 0 || i < 0)
+      return false;
     j = 6 - ip - iq - i;
     t = u;
   }
