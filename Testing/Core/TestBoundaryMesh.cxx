@@ -125,7 +125,7 @@ TEST(BoundaryMesh, ThinSlab)
 
 // vtkSphereSource's layout, 100 x 100: 9.8k points all on one sphere, pole fans of 100
 // triangles. The co-spherical Delaunay mesh gives recovery Steiner points thousands of
-// neighbours; their removal once took 4 s here (140 s at 200 x 200; 8 s now that the star is
+// neighbours; their removal once took 4 s here (140 s at 200 x 200; 1.3 s now that the star is
 // kept up to date instead of recomputed per removed edge).
 TEST(BoundaryMesh, LatitudeLongitudeSphere)
 {
