@@ -25,16 +25,6 @@ double distance(const double* a, const double* b)
   return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
-// det[b-a; c-a; d-a]
-double det3(const double* a, const double* b, const double* c, const double* d)
-{
-  const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
-  const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
-  const double w[3] = { d[0] - a[0], d[1] - a[1], d[2] - a[2] };
-  return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
-    u[2] * (v[0] * w[1] - v[1] * w[0]);
-}
-
 std::uint64_t edgeKey(VertexId a, VertexId b)
 {
   if (a > b)
@@ -799,10 +789,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
           bmax[k] = i == 0 ? c[i][k] : std::max(bmax[k], c[i][k]);
         }
       }
-      // Signed volume terms for the barycentric test: faces opposite each corner.
-      const double total = det3(c[0], c[1], c[2], c[3]);
-      if (!(std::fabs(total) > 0))
-        continue;
+      const double* const corners[4] = { c[0], c[1], c[2], c[3] };
       const int levelLo = background ? 0 : levelOfSize(hlo);
       const int levelHi = background ? 0 : levelOfSize(hhi);
       for (int level = levelLo; level <= levelHi; ++level)
@@ -842,13 +829,11 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
                     p[d] += jitter * a * ((x >> 11) * (1.0 / 9007199254740992.0) - 0.5);
                   }
                 }
-                const double b0 = det3(p, c[1], c[2], c[3]) / total;
-                const double b1 = det3(c[0], p, c[2], c[3]) / total;
-                const double b2 = det3(c[0], c[1], p, c[3]) / total;
-                const double b3 = det3(c[0], c[1], c[2], p) / total;
                 // Closed, with a margin: a point on a face shared by two tets is found from both
                 // (the key removes the duplicate), never from neither through rounding.
-                if (b0 < -1e-9 || b1 < -1e-9 || b2 < -1e-9 || b3 < -1e-9)
+                double b[4];
+                if (!barycentricCoordinates(p, corners, b) || b[0] < -1e-9 || b[1] < -1e-9 ||
+                  b[2] < -1e-9 || b[3] < -1e-9)
                   continue;
                 double hp;
                 if (background)

@@ -64,6 +64,21 @@ std::vector<double> boundaryEdgeSizes(const double* points,
   return sum;
 }
 
+bool barycentricCoordinates(const double* p, const double* const corners[4], double b[4])
+{
+  const double total = det3(corners[0], corners[1], corners[2], corners[3]);
+  if (total == 0 || !std::isfinite(total))
+    return false;
+  // b_i: the volume of the tet with corner i replaced by p, over the whole.
+  for (int i = 0; i < 4; ++i)
+  {
+    const double* c[4] = { corners[0], corners[1], corners[2], corners[3] };
+    c[i] = p;
+    b[i] = det3(c[0], c[1], c[2], c[3]) / total;
+  }
+  return true;
+}
+
 double interpolateSize(const double* p,
   const double* const corners[4],
   const double h[4],
@@ -71,20 +86,14 @@ double interpolateSize(const double* p,
 {
   if (h[0] == h[1] && h[0] == h[2] && h[0] == h[3])
     return h[0]; // exactly, whatever the weights' rounding
-  const double total = det3(corners[0], corners[1], corners[2], corners[3]);
   double b[4];
   double sum = 0;
-  if (total != 0 && std::isfinite(total))
-  {
-    // b_i: the volume of the tet with corner i replaced by p, over the whole.
-    for (int i = 0; i < 4; ++i)
+  if (barycentricCoordinates(p, corners, b))
+    for (double& w : b)
     {
-      const double* c[4] = { corners[0], corners[1], corners[2], corners[3] };
-      c[i] = p;
-      b[i] = std::max(0.0, det3(c[0], c[1], c[2], c[3]) / total);
-      sum += b[i];
+      w = std::max(0.0, w);
+      sum += w;
     }
-  }
   if (!(sum > 0))
   {
     for (double& w : b)

@@ -29,6 +29,11 @@ std::vector<double> boundaryEdgeSizes(const double* points,
   const std::int32_t* triangles,
   std::int32_t triangleCount);
 
+// Barycentric coordinates of p in the tet `corners` (unclamped), in floating point: for
+// interpolation and point placement, never for a topological decision. False (b untouched)
+// when the tet's volume is 0 or not finite in doubles.
+bool barycentricCoordinates(const double* p, const double* const corners[4], double b[4]);
+
 // h(P) inside a tet from its 4 vertex sizes: (sum b_i h_i^p)^(1/p), b_i the barycentric
 // coordinates of p (negative ones, for a point slightly outside, are clamped to 0). p = 0 is
 // the limit, the weighted geometric mean. A flat tet uses equal weights. Sizes must be > 0.
