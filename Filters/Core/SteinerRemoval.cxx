@@ -42,20 +42,15 @@ struct VertexStar
       position[last] = i;
     }
   }
-  // Records the neighbours of v in tet t (a star tet), pointing them at t.
+  // Points the neighbours of v in tet t (a new star tet) at t. Edge removal never creates an
+  // edge at v, so every such neighbour is already listed and live.
   void noteNeighbours(const TetMesh& mesh, TetId t, VertexId v)
   {
     for (int i = 0; i < 4; ++i)
     {
       const VertexId w = mesh.vertex(t, i);
-      if (w == v)
-        continue;
-      if (neighbourTet[w] < 0)
-      {
-        if (std::find(neighbours.begin(), neighbours.end(), w) == neighbours.end())
-          neighbours.push_back(w);
-      }
-      neighbourTet[w] = t;
+      if (w != v && neighbourTet[w] >= 0)
+        neighbourTet[w] = t;
     }
   }
 };
