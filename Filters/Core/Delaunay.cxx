@@ -560,17 +560,18 @@ DelaunayResult buildDelaunay(TetMesh& mesh, const DelaunayOptions& options)
   mesh.flags.clear();
   mesh.freeTets.clear();
 
+  // Outside the exact range the predicates overflow or underflow and the mesh would be
+  // garbage (a fuzzer found a point at 7.8e143 giving inverted tets and broken adjacency).
+  result.error = predicates::coordinateRangeError(mesh.coords.data(), n, "vertex");
+  if (!result.error.empty())
+    return result;
+
   // Bounding box, enlarged by boxEnlargement diagonals on every side.
   double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
   for (VertexId v = 0; v < n; ++v)
     for (int k = 0; k < 3; ++k)
     {
       const double c = mesh.point(v)[k];
-      if (!std::isfinite(c))
-      {
-        result.error = "vertex " + std::to_string(v) + " has a non-finite coordinate";
-        return result;
-      }
       lo[k] = v == 0 ? c : std::min(lo[k], c);
       hi[k] = v == 0 ? c : std::max(hi[k], c);
     }

@@ -12,12 +12,38 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <vector>
 
 namespace tetmesher
 {
 namespace predicates
 {
+
+std::string coordinateRangeError(const double* points, std::int64_t pointCount, const char* noun)
+{
+  for (std::int64_t i = 0; i < 3 * pointCount; ++i)
+  {
+    const double c = points[i];
+    if (inExactRange(c))
+      continue;
+    std::ostringstream error;
+    error.precision(17);
+    error << noun << " " << i / 3 << " has ";
+    if (!std::isfinite(c))
+      error << "a non-finite coordinate (" << c << ")";
+    else
+    {
+      error << "coordinate " << c;
+      error.precision(3);
+      error << ", outside the magnitudes " << kMinExactCoordinate << " to " << kMaxExactCoordinate
+            << " (and 0) where the predicates are exact; "
+            << (std::abs(c) > 1 ? "scale the model down" : "set it to 0 or scale the model up");
+    }
+    return error.str();
+  }
+  return {};
+}
 
 namespace
 {

@@ -5,14 +5,34 @@
 
 #include "TetMesh.h"
 
+#include <cstdint>
+#include <string>
+
 namespace tetmesher
 {
 namespace predicates
 {
 
+// The magnitudes of coordinates for which the predicates below are exact. The expansion
+// arithmetic is exact only while no product overflows or underflows: insphere is of degree 5
+// in the coordinates (and the Delaunay box corners lie up to 3x farther out than the points),
+// so beyond 1e50 it overflows; below 1e-40 the low bits of its degree-5 products fall under
+// the smallest double. Zero is always fine. Inputs are checked against this range
+// (buildDelaunay, buildSurfaceInput, diagnoseSurface) and refused outside it.
+constexpr double kMaxExactCoordinate = 1e50;
+constexpr double kMinExactCoordinate = 1e-40;
+inline bool inExactRange(double c)
+{
+  const double a = c < 0 ? -c : c;
+  return a == 0 || (a >= kMinExactCoordinate && a <= kMaxExactCoordinate);
+}
+// "" when every coordinate of points[0..3n) is finite and in the exact range, otherwise a
+// message naming the first offending point (as "`noun` i") and its coordinate.
+std::string coordinateRangeError(const double* points, std::int64_t pointCount, const char* noun);
+
 // Sign of det[a-d; b-d; c-d]: +1 when d lies below the plane through a,b,c (a,b,c
 // counterclockwise seen from above), -1 above, 0 when the four points are coplanar.
-// Exact for every finite double input.
+// Exact for every double input in the exact range above.
 int orient3d(const double* a, const double* b, const double* c, const double* d);
 
 // For a positively oriented tet (a,b,c,d): +1 when e is strictly inside its circumsphere,

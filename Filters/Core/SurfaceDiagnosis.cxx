@@ -18,12 +18,13 @@ using predicates::orient3d;
 namespace
 {
 
-constexpr int kKindCount = static_cast<int>(SurfaceDefect::InvalidPointId) + 1;
+constexpr int kKindCount = static_cast<int>(SurfaceDefect::CoordinateOutOfRange) + 1;
 
 // Order in which kinds are listed (records and summary).
 constexpr SurfaceDefect kReportOrder[kKindCount] = { SurfaceDefect::Empty,
   SurfaceDefect::InvalidPointId,
   SurfaceDefect::NonFiniteCoordinate,
+  SurfaceDefect::CoordinateOutOfRange,
   SurfaceDefect::DuplicatePoint,
   SurfaceDefect::DegenerateTriangle,
   SurfaceDefect::DuplicateTriangle,
@@ -183,6 +184,13 @@ private:
       {
         Finite[i] = false;
         add(SurfaceDefect::NonFiniteCoordinate, { i }, {});
+      }
+      else if (!predicates::inExactRange(p[0]) || !predicates::inExactRange(p[1]) ||
+        !predicates::inExactRange(p[2]))
+      {
+        // Not decidable exactly: kept out of the geometric checks like a non-finite point.
+        Finite[i] = false;
+        add(SurfaceDefect::CoordinateOutOfRange, { i }, {});
       }
       else
         order.push_back(i);
@@ -623,6 +631,11 @@ const char* defectLabel(SurfaceDefect kind, bool plural)
     case SurfaceDefect::InvalidPointId:
       return plural ? "triangles with out-of-range point ids"
                     : "triangle with out-of-range point ids";
+    case SurfaceDefect::CoordinateOutOfRange:
+      return plural ? "points with coordinates too large or too small to decide exactly "
+                      "(magnitudes beyond 1e-40..1e50; scale the model)"
+                    : "point with coordinates too large or too small to decide exactly "
+                      "(magnitudes beyond 1e-40..1e50; scale the model)";
   }
   return "unknown defect";
 }

@@ -4,7 +4,9 @@
 //
 // What is checked (all decisions exact, through the predicates of Predicates.h):
 //  - empty input, triangles that reference point ids out of range;
-//  - non-finite coordinates (NaN, Inf), exactly coincident points;
+//  - non-finite coordinates (NaN, Inf), coordinates outside the magnitudes for which the
+//    predicates are exact (predicates::kMinExactCoordinate..kMaxExactCoordinate, and 0),
+//    exactly coincident points;
 //  - degenerate triangles (a repeated vertex id, or three exactly collinear points);
 //  - duplicate triangles (same three vertex ids, in any order or orientation);
 //  - open edges (used by one triangle);
@@ -40,6 +42,7 @@ enum class SurfaceDefect
   UnusedPoint,             // pointIds: {p} (a warning: does not make ok() false)
   Empty,                   // no points or no triangles
   InvalidPointId,          // pointIds: the triangle's 3 ids; triangleIds: {t}
+  CoordinateOutOfRange,    // pointIds: {p} (finite, but too large or too small to be exact)
 };
 
 // Short plural label of a defect kind, e.g. "open edges".

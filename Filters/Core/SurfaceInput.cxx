@@ -29,14 +29,9 @@ std::string buildSurfaceInput(const double* points,
   out.pointCount = pointCount;
   if (pointCount < 4 || triangleCount < 4 || !points || !triangles)
     return "empty input: a closed surface needs at least 4 points and 4 triangles";
-  for (std::int32_t i = 0; i < 3 * pointCount; ++i)
-  {
-    if (!std::isfinite(points[i]))
-    {
-      error << "point " << i / 3 << " has a non-finite coordinate";
-      return error.str();
-    }
-  }
+  std::string rangeError = predicates::coordinateRangeError(points, pointCount, "point");
+  if (!rangeError.empty())
+    return rangeError;
   std::map<std::array<VertexId, 3>, std::int32_t> seen;
   std::vector<std::pair<std::uint64_t, std::int32_t>> edgeUses;
   out.triangles.reserve(triangleCount);

@@ -462,3 +462,49 @@ TEST(Delaunay, ScalingByPowersOfTwoGivesTheSameMesh)
     EXPECT_EQ(scaled.tets, reference.tets) << "exponent " << exponent;
   }
 }
+
+// The predicates are exact only within [kMinExactCoordinate, kMaxExactCoordinate] (and 0):
+// inside, scaling by a power of two gives the identical mesh right up to both ends; outside,
+// the points are refused by name. The 4 points below are the fuzzer's reduction of a surface
+// whose mesh came out with inverted tets and broken adjacency (a coordinate of 7.8e143).
+TEST(Delaunay, CoordinatesBeyondTheExactRangeAreRefused)
+{
+  TetMesh base = randomPoints(3000, 5, 1.0, 2.0);
+  TetMesh reference = base;
+  ASSERT_TRUE(buildDelaunay(reference).ok);
+  for (int exponent : { -132, 165 })
+  {
+    TetMesh scaled = base;
+    for (double& c : scaled.coords)
+      c = std::ldexp(c, exponent);
+    ASSERT_GE(std::ldexp(1.0, exponent), predicates::kMinExactCoordinate);
+    ASSERT_LE(std::ldexp(2.0, exponent), predicates::kMaxExactCoordinate);
+    DelaunayOptions options;
+    options.validate = true;
+    const DelaunayResult r = buildDelaunay(scaled, options);
+    ASSERT_TRUE(r.ok) << "2^" << exponent << ": " << r.error;
+    EXPECT_EQ(scaled.tets, reference.tets) << "2^" << exponent;
+  }
+
+  TetMesh fuzzed;
+  fuzzed.addVertex(0.081250000000000003, 0.42535000000000001, 0.25);
+  fuzzed.addVertex(0.11405, 0.33729999999999999, 0.35099999999999998);
+  fuzzed.addVertex(0.4113, 0.25285000000000002, -0.12995000000000001);
+  fuzzed.addVertex(0.34410000000000002, 0.26284999999999997, 7.8043713757899806e+143);
+  DelaunayResult r = buildDelaunay(fuzzed);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("vertex 3 has coordinate 7.80437137578998"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("scale the model down"), std::string::npos) << r.error;
+
+  TetMesh tiny = randomPoints(10, 6, 1.0, 2.0);
+  tiny.coords[3 * 7 + 1] = 1e-300;
+  r = buildDelaunay(tiny);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("vertex 7 has coordinate 1e-300"), std::string::npos) << r.error;
+  tiny.coords[3 * 7 + 1] = std::numeric_limits<double>::quiet_NaN();
+  r = buildDelaunay(tiny);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("vertex 7 has a non-finite coordinate"), std::string::npos) << r.error;
+  tiny.coords[3 * 7 + 1] = 0.0; // zero is exact at any scale
+  EXPECT_TRUE(buildDelaunay(tiny).ok);
+}

@@ -538,6 +538,27 @@ TEST(SurfaceDiagnosis, NonFiniteCoordinates)
   expectRecord(d.defects[1], SurfaceDefect::NonFiniteCoordinate, { 6 }, {});
 }
 
+// Finite coordinates that the predicates cannot decide exactly (overflow beyond 1e50,
+// underflow below 1e-40) are named like non-finite ones, and their triangles are kept out of
+// the geometric checks.
+TEST(SurfaceDiagnosis, CoordinatesBeyondTheExactRange)
+{
+  Surface s = cube();
+  s.pts[3 * 2 + 1] = 7.8e143;
+  s.pts[3 * 4] = -1e-45;
+  s.pts[3 * 5] = std::numeric_limits<double>::quiet_NaN();
+  s.pts[3 * 6] = 1e50; // the ends of the range are fine
+  s.pts[3 * 6 + 1] = -1e-40;
+  const SurfaceDiagnosis d = s.diagnose();
+  ASSERT_EQ(d.defects.size(), 3u) << d.summary();
+  expectRecord(d.defects[0], SurfaceDefect::NonFiniteCoordinate, { 5 }, {});
+  expectRecord(d.defects[1], SurfaceDefect::CoordinateOutOfRange, { 2 }, {});
+  expectRecord(d.defects[2], SurfaceDefect::CoordinateOutOfRange, { 4 }, {});
+  EXPECT_NE(d.summary().find("2 points with coordinates too large or too small to decide exactly"),
+    std::string::npos)
+    << d.summary();
+}
+
 TEST(SurfaceDiagnosis, DuplicatePointUnused)
 {
   Surface s = cube();

@@ -51,6 +51,11 @@ CASES = {
     "nan-coordinate.vtp": (
         "1 point with non-finite coordinates (point 6)", False,
         [("point with non-finite coordinates", -1)]),
+    "huge-coordinate.off": (
+        "1 point with coordinates too large or too small to decide exactly (magnitudes beyond "
+        "1e-40..1e50; scale the model) (point 6)", False,
+        [("point with coordinates too large or too small to decide exactly (magnitudes beyond "
+          "1e-40..1e50; scale the model)", -1)]),
     # One polygon (cell 10) around a square hole through a slit: VTK's triangulation of it
     # repeats vertex 4 (two zero-area triangles) and leaves the hole's rim open.
     "keyhole-polygon.off": (

@@ -27,7 +27,7 @@ def write_off(name, points, faces, comment):
     with open(os.path.join(HERE, name), "w") as f:
         f.write("OFF\n# %s\n%d %d 0\n" % (comment, len(points), len(faces)))
         for p in points:
-            f.write("%s %s %s\n" % tuple(repr(float(x)) if x != int(x) else str(int(x)) for x in p))
+            f.write("%s %s %s\n" % tuple(str(int(x)) if x == int(x) and abs(x) < 1e15 else repr(float(x)) for x in p))
         for t in faces:
             f.write("%d %s\n" % (len(t), " ".join(str(i) for i in t)))
 
@@ -87,6 +87,12 @@ def main():
               [(0, 0, 0), (2, 0, 0), (0, 2, 0), (0, 0, 2), (1, 0, 0)],
               [(0, 2, 4), (4, 2, 1), (0, 1, 3), (1, 2, 3), (0, 3, 2), (0, 4, 1)],
               "tetrahedron whose edge 0-1 is split at 4 on one side: triangle 5 has zero area")
+
+    # Finite, but beyond what the exact predicates can decide (they would overflow): a
+    # fuzzer's find, which before the range check gave inverted tets and a crash.
+    write_off("huge-coordinate.off",
+              [p if i != 6 else (1, 1, 7.8e143) for i, p in enumerate(CUBE_POINTS)],
+              CUBE_TRIANGLES, "unit cube whose point 6 is pulled out to z = 7.8e143")
 
     # A quad with a hole cannot be an OFF face; the closest: the top of a box as one
     # non-convex polygon that goes around a hole and back along a slit (a keyhole).
