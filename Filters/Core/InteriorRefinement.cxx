@@ -759,7 +759,6 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     { return static_cast<int>(std::floor(std::log(size / minH) / logRatio + 0.5)); };
     struct LatticePoint
     {
-      std::uint64_t order;
       double p[3];
       double h;
       TetId tet;
@@ -858,8 +857,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
                 }
                 if (!taken.insert(key).second)
                   continue;
-                points.push_back({ hilbertKey(p),
-                  { p[0], p[1], p[2] },
+                points.push_back({ { p[0], p[1], p[2] },
                   hp,
                   t,
                   { mesh.vertex(t, 0), mesh.vertex(t, 1), mesh.vertex(t, 2), mesh.vertex(t, 3) } });
@@ -867,26 +865,32 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
         }
       }
     }
-    std::sort(points.begin(),
-      points.end(),
-      [](const LatticePoint& x, const LatticePoint& y)
-      {
-        if (x.order != y.order)
-          return x.order < y.order;
-        return std::lexicographical_compare(x.p, x.p + 3, y.p, y.p + 3);
-      });
+    // Insertion order: BRIO rounds (HilbertSort.h), not one Hilbert sweep. A sweep fills the
+    // domain front by front, and a point on the front conflicts with every not yet refined tet
+    // whose circumsphere reaches it: boundary-mesh tets span the domain, and where the surface
+    // points are (nearly) co-spherical (uv_sphere.vtp: 9802 points on one sphere) their
+    // circumspheres all are that sphere, so cavities held thousands of tets (6500 on average
+    // over uv_sphere's first 8192 points) and the prefill took 200 s. Random rounds refine the
+    // whole domain coarse to fine, as the edge splitting's longest-first rounds do.
+    std::vector<double> latticeCoords;
+    latticeCoords.reserve(3 * points.size());
+    for (const LatticePoint& q : points)
+      latticeCoords.insert(latticeCoords.end(), q.p, q.p + 3);
+    const std::vector<VertexId> insertionOrder =
+      brioOrder(latticeCoords.data(), static_cast<VertexId>(points.size()));
     // The initial tets are deleted as points go in: remember their regions.
     std::vector<std::int32_t> initialRegion(region.begin(), region.begin() + initialTets);
     TetId hint = -1;
-    for (const LatticePoint& q : points)
+    for (const VertexId index : insertionOrder)
     {
+      const LatticePoint& q = points[static_cast<std::size_t>(index)];
       if (result.insertedPoints >= budget)
       {
         result.budgetReached = true;
         break;
       }
-      // Walk from the last insertion (close, in Hilbert order), else from the corners of the
-      // initial tet that contained q (the segment from a corner to q lies in that tet, so
+      // Walk from the last insertion (close: each round is Hilbert-sorted), else from the corners
+      // of the initial tet that contained q (the segment from a corner to q lies in that tet, so
       // inside the domain even when it is not convex); the exhaustive search last.
       TetId container = walkToPoint(mesh, q.p, hint);
       for (int i = 0; i < 4 && container < 0; ++i)
