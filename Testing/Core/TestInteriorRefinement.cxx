@@ -579,7 +579,7 @@ TEST(InteriorRefinement, LatticeOnCosphericalUvSphere)
   // conflicted with all the not yet refined tets (cavities of thousands of tets, shrunk to
   // stars that left long edges no split could fix): 9x the CPU time of edge splitting alone
   // here and 81% of interior edges in [0.7, 1.42] h; ~30x on Data/uv_sphere.vtp (100 x 100).
-  // In BRIO order: 1.2-1.3x and 96%. CPU times of one process are compared, with a wide margin.
+  // In BRIO order: under 2x and 96%. CPU times of one process are compared, with a wide margin.
   struct Run
   {
     RefinementResult result;
