@@ -579,7 +579,8 @@ TEST(InteriorRefinement, LatticeOnCosphericalUvSphere)
   // conflicted with all the not yet refined tets (cavities of thousands of tets, shrunk to
   // stars that left long edges no split could fix): 9x the CPU time of edge splitting alone
   // here and 81% of interior edges in [0.7, 1.42] h; ~30x on Data/uv_sphere.vtp (100 x 100).
-  // In BRIO order: under 2x and 96%. CPU times of one process are compared, with a wide margin.
+  // In BRIO order: under 2x and 96%. The times are printed, not asserted (noisy machines);
+  // the share of edges in band is what fails on the old order.
   struct Run
   {
     RefinementResult result;
@@ -626,7 +627,6 @@ TEST(InteriorRefinement, LatticeOnCosphericalUvSphere)
     lattice.cpu,
     split.cpu);
   EXPECT_GT(lattice.result.latticePoints, lattice.result.insertedPoints / 2);
-  EXPECT_LT(lattice.cpu, 3 * split.cpu + 0.5);
   EXPECT_GE(lattice.share, 0.95);
   EXPECT_EQ(lattice.check, "");
 }
