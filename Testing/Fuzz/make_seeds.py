@@ -70,6 +70,8 @@ def encode_real(points, triangles, mode, flags=0):
     out += struct.pack("<H", len(points))
     fmt = "<3d" if mode == 2 else "<3f"
     for p in points:
+        if mode != 2:  # float32: clamp what it cannot hold (huge-coordinate.off's 7.8e143)
+            p = [max(-3.4e38, min(3.4e38, x)) for x in p]
         out += struct.pack(fmt, *p)
     for t in triangles:
         out += struct.pack("<3H", *t)
