@@ -443,14 +443,16 @@ TEST(Delaunay, CoplanarAndCollinearInput)
   buildAndValidate(line);
 }
 
-TEST(Delaunay, ScalingByPowersOfTwoGivesTheSameMesh)
+namespace
 {
-  // Exact predicates are invariant under exact scaling (no underflow or overflow here),
-  // so the tets must be identical.
-  const TetMesh base = randomPoints(5000, 31);
+
+// Exact predicates are invariant under exact scaling (no underflow or overflow), so the
+// tets must be identical to those of the unscaled points.
+void expectScalingGivesTheSameMesh(const TetMesh& base, std::initializer_list<int> exponents)
+{
   TetMesh reference = base;
   ASSERT_TRUE(buildDelaunay(reference).ok);
-  for (int exponent : { -60, 60 })
+  for (int exponent : exponents)
   {
     TetMesh scaled = base;
     for (double& c : scaled.coords)
@@ -458,9 +460,16 @@ TEST(Delaunay, ScalingByPowersOfTwoGivesTheSameMesh)
     DelaunayOptions options;
     options.validate = true;
     const DelaunayResult r = buildDelaunay(scaled, options);
-    ASSERT_TRUE(r.ok) << r.error;
-    EXPECT_EQ(scaled.tets, reference.tets) << "exponent " << exponent;
+    ASSERT_TRUE(r.ok) << "2^" << exponent << ": " << r.error;
+    EXPECT_EQ(scaled.tets, reference.tets) << "2^" << exponent;
   }
+}
+
+} // namespace
+
+TEST(Delaunay, ScalingByPowersOfTwoGivesTheSameMesh)
+{
+  expectScalingGivesTheSameMesh(randomPoints(5000, 31), { -60, 60 });
 }
 
 // The predicates are exact only within [kMinExactCoordinate, kMaxExactCoordinate] (and 0):
@@ -469,22 +478,10 @@ TEST(Delaunay, ScalingByPowersOfTwoGivesTheSameMesh)
 // whose mesh came out with inverted tets and broken adjacency (a coordinate of 7.8e143).
 TEST(Delaunay, CoordinatesBeyondTheExactRangeAreRefused)
 {
-  TetMesh base = randomPoints(3000, 5, 1.0, 2.0);
-  TetMesh reference = base;
-  ASSERT_TRUE(buildDelaunay(reference).ok);
-  for (int exponent : { -132, 165 })
-  {
-    TetMesh scaled = base;
-    for (double& c : scaled.coords)
-      c = std::ldexp(c, exponent);
-    ASSERT_GE(std::ldexp(1.0, exponent), predicates::kMinExactCoordinate);
-    ASSERT_LE(std::ldexp(2.0, exponent), predicates::kMaxExactCoordinate);
-    DelaunayOptions options;
-    options.validate = true;
-    const DelaunayResult r = buildDelaunay(scaled, options);
-    ASSERT_TRUE(r.ok) << "2^" << exponent << ": " << r.error;
-    EXPECT_EQ(scaled.tets, reference.tets) << "2^" << exponent;
-  }
+  // Points in [1, 2): scaled, every coordinate stays within the range.
+  ASSERT_GE(std::ldexp(1.0, -132), predicates::kMinExactCoordinate);
+  ASSERT_LE(std::ldexp(2.0, 165), predicates::kMaxExactCoordinate);
+  expectScalingGivesTheSameMesh(randomPoints(3000, 5, 1.0, 2.0), { -132, 165 });
 
   TetMesh fuzzed;
   fuzzed.addVertex(0.081250000000000003, 0.42535000000000001, 0.25);
