@@ -262,10 +262,10 @@ public:
         }
         boxes_.insert(boxes_.end(), { lo[0], lo[1], lo[2], hi[0], hi[1], hi[2] });
         std::int64_t c0[3], c1[3];
-        for (int a = 0; a < 3; ++a)
+        if (cellRange(lo, hi, 0, c0, c1) > kMaxCellsPerFace)
         {
-          c0[a] = index(lo[a], a);
-          c1[a] = index(hi[a], a);
+          large_.push_back(id);
+          continue;
         }
         for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
           for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
@@ -279,11 +279,29 @@ public:
   bool near(const TetMesh& mesh, const double* p, double limit) const
   {
     const double limit2 = limit * limit;
-    std::int64_t c0[3], c1[3];
-    for (int a = 0; a < 3; ++a)
+    auto faceIsNear = [&](std::int32_t id)
     {
-      c0[a] = index(p[a] - limit, a);
-      c1[a] = index(p[a] + limit, a);
+      // Bounding box first: most faces of a cell are farther than limit.
+      const double* box = &boxes_[6 * static_cast<std::size_t>(id)];
+      if (p[0] < box[0] - limit || p[0] > box[3] + limit || p[1] < box[1] - limit ||
+        p[1] > box[4] + limit || p[2] < box[2] - limit || p[2] > box[5] + limit)
+        return false;
+      const VertexId* v = &corners_[3 * static_cast<std::size_t>(id)];
+      return pointTriangleDistance2(p, mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2])) <
+        limit2;
+    };
+    for (std::int32_t id : large_)
+      if (faceIsNear(id))
+        return true;
+    std::int64_t c0[3], c1[3];
+    const std::int32_t faceCount = static_cast<std::int32_t>(corners_.size() / 3);
+    if (cellRange(p, p, limit, c0, c1) > faceCount)
+    {
+      // Wider than the surface is fine (h ~ the model's size, or far beyond it): scan.
+      for (std::int32_t id = 0; id < faceCount; ++id)
+        if (faceIsNear(id))
+          return true;
+      return false;
     }
     for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
       for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
@@ -293,22 +311,34 @@ public:
           if (it == cells_.end())
             continue;
           for (std::int32_t id : it->second)
-          {
-            // Bounding box first: most faces of a cell are farther than limit.
-            const double* box = &boxes_[6 * static_cast<std::size_t>(id)];
-            if (p[0] < box[0] - limit || p[0] > box[3] + limit || p[1] < box[1] - limit ||
-              p[1] > box[4] + limit || p[2] < box[2] - limit || p[2] > box[5] + limit)
-              continue;
-            const VertexId* v = &corners_[3 * static_cast<std::size_t>(id)];
-            if (pointTriangleDistance2(p, mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2])) <
-              limit2)
+            if (faceIsNear(id))
               return true;
-          }
         }
     return false;
   }
 
 private:
+  // A face spanning more cells than this (one much larger than the cell size, which is from
+  // the median h: a spike of a fuzzed surface reached 1e6 cells per axis) is kept in a list
+  // that every query scans, so that neither building nor querying depends on its extent.
+  static constexpr double kMaxCellsPerFace = 512;
+
+  // The cells of the box [lo - margin, hi + margin], and how many there are.
+  double cellRange(const double* lo,
+    const double* hi,
+    double margin,
+    std::int64_t* c0,
+    std::int64_t* c1) const
+  {
+    double count = 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      c0[a] = index(lo[a] - margin, a);
+      c1[a] = index(hi[a] + margin, a);
+      count *= static_cast<double>(c1[a] - c0[a] + 1);
+    }
+    return count;
+  }
   std::int64_t index(double x, int a) const
   {
     const double c = std::floor((x - origin_[a]) / cell_);
@@ -326,6 +356,7 @@ private:
   std::vector<VertexId> corners_;
   std::vector<double> boxes_; // per face: min x y z, max x y z
   std::unordered_map<std::uint64_t, std::vector<std::int32_t>> cells_;
+  std::vector<std::int32_t> large_; // faces over kMaxCellsPerFace cells
 };
 
 // Unique edges of the live tets as symmetric CSR adjacency, with for each entry a tet that has
@@ -768,8 +799,17 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     std::vector<LatticePoint> points;
     const double jitter = std::clamp(options.latticeJitter, 0.0, 0.5);
     std::unordered_set<std::uint64_t> taken;
+    // Work bounds. The key holds 19 bits per index, so a level whose indices would go beyond
+    // that is left to the edge splitting (keys would collide, and far beyond, the index would
+    // not even fit an integer). And the candidates examined are bounded: a tet's bounding box
+    // can hold vastly more lattice positions than the size field asks for inside the tet (a
+    // fuzzed cube with a vertex pulled out to 3.4e38 and h ~ 1 at the others), so past the
+    // bound the prefill stops and the edge splitting, bounded by `budget`, does the rest.
+    constexpr double kMaxLatticeIndex = 1 << 18;
+    const double maxCandidates = 16.0 * static_cast<double>(budget) + 1e6;
+    double candidates = 0;
     const TetId initialTets = mesh.tetCapacity();
-    for (TetId t = 0; t < initialTets; ++t)
+    for (TetId t = 0; t < initialTets && candidates <= maxCandidates; ++t)
     {
       if (mesh.isDeleted(t))
         continue;
@@ -799,11 +839,22 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
         {
           const double shift = sub ? 0.5 : 0.0;
           std::int64_t first[3], last[3];
+          double positions = 1;
+          bool keyable = true;
           for (int k = 0; k < 3; ++k)
           {
-            first[k] = static_cast<std::int64_t>(std::ceil((bmin[k] - lo[k]) / a - shift));
-            last[k] = static_cast<std::int64_t>(std::floor((bmax[k] - lo[k]) / a - shift));
+            const double from = std::ceil((bmin[k] - lo[k]) / a - shift);
+            const double to = std::floor((bmax[k] - lo[k]) / a - shift);
+            keyable = keyable && to < kMaxLatticeIndex;
+            positions *= std::max(to - from + 1, 0.0);
+            first[k] = static_cast<std::int64_t>(from);
+            last[k] = static_cast<std::int64_t>(std::min(to, kMaxLatticeIndex));
           }
+          if (!keyable)
+            continue;
+          candidates += positions;
+          if (candidates > maxCandidates)
+            break;
           for (std::int64_t i = first[0]; i <= last[0]; ++i)
             for (std::int64_t j = first[1]; j <= last[1]; ++j)
               for (std::int64_t k = first[2]; k <= last[2]; ++k)

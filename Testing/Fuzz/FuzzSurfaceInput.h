@@ -17,7 +17,8 @@
 //             the surface nearly intact).
 //     flags bit 0: MesherOptions::enclosedShellsAreHoles
 //     flags bit 1: also run meshSurface with validateInput = false on input that the
-//                  diagnosis refuses (the mesher must still fail cleanly, not crash)
+//                  diagnosis refuses (the mesher must still fail cleanly, not crash), with
+//                  a time limit of kUncheckedSeconds
 //     flags bit 2: DiagnosisOptions::maxRecordsPerKind = 3
 //     flags bit 3: on a surface the mesher accepts (of at most kMaxPipelineTriangles), also
 //                  run the whole pipeline, meshVolume: size field, interior points (at most
@@ -51,6 +52,8 @@ constexpr std::size_t kMaxPoints = 4000;
 constexpr std::size_t kMaxTriangles = 8000;
 constexpr std::int32_t kMaxPipelineTriangles = 1000;
 constexpr int kMaxPipelinePoints = 3000;
+// MesherOptions::maxSeconds of the flag-bit-1 run (unchecked input): see FuzzSurfaceCheck.h.
+constexpr double kUncheckedSeconds = 3.0;
 
 inline FuzzSurface decodeFuzzSurface(const std::uint8_t* data, std::size_t size)
 {
