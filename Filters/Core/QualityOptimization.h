@@ -2,8 +2,8 @@
 // after Klingner & Shewchuk 2007, "Aggressive tetrahedral mesh improvement").
 //
 // Driven by the worst elements. Each pass works through a queue of the tets whose quality
-// is below the target, worst first (new bad tets are queued behind), applying the best
-// acceptable of
+// is below the target, worst first (new bad tets are queued behind; a tet is in the queue
+// once at most), applying the best acceptable of
 //  - edge removal of each of its edges (EdgeRemoval.h): the n tets around an interior edge
 //    become the 2n-4 tets over the best triangulation of the edge's ring (dynamic programming
 //    over the ring polygon, maximising the worst quality); n = 3 is the 3-2 flip;

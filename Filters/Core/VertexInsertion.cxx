@@ -20,33 +20,51 @@ bool growCavity(Context& ctx, TetId t, VertexId xv, int maxCavity, LocalMove& ou
 {
   TetMesh& m = ctx.mesh;
   std::vector<TetId> cavity = { t };
-  std::vector<std::pair<TetId, int>> faces; // boundary faces of the cavity
+  // Boundary faces of the cavity: (tet, face) and the tet's index in `cavity`.
+  std::vector<std::pair<TetId, int>> faces;
+  std::vector<std::size_t> faceOwner;
+  std::vector<VertexId> faceVertices;
   std::vector<std::array<VertexId, 2>> edges;
   std::vector<TetVertices> newTets;
+  // The new tet over face f of cavity[i] is the same in every iteration that has that face
+  // (the cavity only grows, xv does not move): evaluated once, in slot 4 * i + f.
+  struct Candidate
+  {
+    bool known = false, positive = false;
+    TetEval eval;
+  };
+  std::vector<Candidate> candidates;
   bool found = false;
   for (int iter = 0; iter < maxCavity; ++iter)
   {
     faces.clear();
-    for (TetId c : cavity)
+    faceOwner.clear();
+    for (std::size_t ci = 0; ci < cavity.size(); ++ci)
+    {
+      const TetId c = cavity[ci];
       for (int f = 0; f < 4; ++f)
       {
         FaceRef n = m.neighbor(c, f);
         if (n == kNoNeighbor || std::find(cavity.begin(), cavity.end(), faceTet(n)) == cavity.end())
+        {
           faces.push_back({ c, f });
+          faceOwner.push_back(ci);
+        }
         else if (m.isConstrained(c, f))
           return found; // a constraint inside the cavity (reached around it)
       }
+    }
     // A cavity vertex on no boundary face would vanish from the mesh.
+    faceVertices.clear();
+    for (const auto& [c, f] : faces)
+      for (int k = 0; k < 3; ++k)
+        faceVertices.push_back(m.vertex(c, kFaceVertices[f][k]));
+    std::sort(faceVertices.begin(), faceVertices.end());
     for (TetId c : cavity)
       for (int i = 0; i < 4; ++i)
-      {
-        VertexId x = m.vertex(c, i);
-        bool onBoundary = false;
-        for (const auto& [bc, bf] : faces)
-          onBoundary = onBoundary || (m.vertex(bc, bf) != x && localIndex(m, bc, x) >= 0);
-        if (!onBoundary)
+        if (!std::binary_search(faceVertices.begin(), faceVertices.end(), m.vertex(c, i)))
           return found;
-      }
+    candidates.resize(4 * cavity.size());
     newTets.clear();
     WorstOf newMin;
     bool valid = true;
@@ -60,7 +78,23 @@ bool growCavity(Context& ctx, TetId t, VertexId xv, int maxCavity, LocalMove& ou
       TetVertices nt = { m.vertex(c, fv[0]), m.vertex(c, fv[1]), m.vertex(c, fv[2]), xv };
       for (int e = 0; e < 3; ++e)
         edges.push_back({ std::min(nt[e], nt[(e + 1) % 3]), std::max(nt[e], nt[(e + 1) % 3]) });
-      const double sc = ctx.scoreCandidate(nt, newMin, valid);
+      Candidate& cand = candidates[4 * faceOwner[i] + static_cast<std::size_t>(f)];
+      if (!cand.known)
+      {
+        cand.known = true;
+        cand.positive = ctx.positive(nt[0], nt[1], nt[2], nt[3]);
+        if (cand.positive)
+          cand.eval = ctx.eval(nt);
+      }
+      // As Context::scoreCandidate: -1 and an invalid move for a tet that is not positive.
+      double sc = -1;
+      if (cand.positive)
+      {
+        newMin.add(cand.eval);
+        sc = cand.eval.score;
+      }
+      else
+        valid = false;
       if (sc < worstScore)
       {
         worstScore = sc;

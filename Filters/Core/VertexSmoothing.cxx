@@ -264,7 +264,9 @@ bool smoothVertex(Context& ctx, VertexId v, std::vector<TetId>& star)
       break;
   }
 
-  if (ctx.accept(curMin, origMin))
+  // A gain below kMinSmoothingGain is rounding noise, not worth a move: kept, such moves
+  // repeat endlessly on a ball already at its best, each requeuing the ball's bad tets.
+  if (ctx.accept(curMin, origMin) && curMin.score >= origMin.score + kMinSmoothingGain)
   {
     setPos(cur);
     for (TetId t : star)

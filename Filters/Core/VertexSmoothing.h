@@ -18,8 +18,12 @@ namespace optimization
 // Worst values over `star`; valid = false when a tet of it is not positive (exact).
 WorstOf worstOfStar(const Context& ctx, const std::vector<TetId>& star, bool& valid);
 
-// Moves free vertex v when that improves its ball (see above). `star` is scratch space.
-// Returns true when the vertex moved.
+// Least improvement of the ball's worst score (in [0,1]) for which smoothVertex moves a
+// vertex (1e-8 of Q or of the dihedral angle / 70.5 degrees): below it, rounding noise.
+constexpr double kMinSmoothingGain = 1e-8;
+
+// Moves free vertex v when that improves its ball's worst score by kMinSmoothingGain at
+// least (see above). `star` is scratch space. Returns true when the vertex moved.
 bool smoothVertex(Context& ctx, VertexId v, std::vector<TetId>& star);
 
 } // namespace optimization
