@@ -89,11 +89,46 @@ private:
   std::size_t size_ = 0;
 };
 
+// The measure of how much of the mesh a missing item cuts, with the bounding box of the
+// item (of all its parts for a compound measure): an entity whose box is separated from it
+// scores 0 without an exact test.
+struct ItemCost : FlipCost
+{
+  std::array<double, 6> box = { 0, 0, 0, 0, 0, 0 }; // min x, y, z, max x, y, z
+};
+
+// True when the points of `ids` all lie on one side of `box` along some axis: strictly
+// (open = false), or possibly on its boundary too (open = true, for an open set such as a
+// tet interior, whose coordinates never reach its own bounding box).
+template<std::size_t N>
+bool separatedFromBox(const TetMesh& mesh,
+  const std::array<double, 6>& box,
+  const std::array<VertexId, N>& ids,
+  bool open)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    double lo = mesh.point(ids[0])[k], hi = lo;
+    for (std::size_t i = 1; i < N; ++i)
+    {
+      lo = std::min(lo, mesh.point(ids[i])[k]);
+      hi = std::max(hi, mesh.point(ids[i])[k]);
+    }
+    if (open ? (hi <= box[k] || lo >= box[k + 3]) : (hi < box[k] || lo > box[k + 3]))
+      return true;
+  }
+  return false;
+}
+
 // The same measure, each exact test run once per (unordered) tet, face or edge: a flip search
 // prices the same entities again and again (every move rescans its pipe, every edge removal
-// prices all ring triangulations). All three tests are symmetric in their vertices.
-FlipCost memoized(const FlipCost& base)
+// prices all ring triangulations). All three tests are symmetric in their vertices. Entities
+// separated from the item's box score 0 before the look-up (the tests count tet interiors,
+// open triangles and open segments, so only separation counts, not touching boxes).
+FlipCost memoized(const ItemCost& base, const TetMesh& mesh)
 {
+  const TetMesh* m = &mesh;
+  const std::array<double, 6> box = base.box;
   struct Caches
   {
     FlatMemo<std::array<VertexId, 4>> tets;
@@ -106,8 +141,10 @@ FlipCost memoized(const FlipCost& base)
   FlatMemo<std::array<VertexId, 2>>* edges = &caches->edges;
   FlipCost c;
   if (base.tet)
-    c.tet = [caches, tets, f = base.tet](const TetVertices& t)
+    c.tet = [caches, tets, f = base.tet, m, box](const TetVertices& t)
     {
+      if (separatedFromBox(*m, box, t, true))
+        return 0;
       TetVertices k = t;
       std::sort(k.begin(), k.end());
       int value = tets->find(k);
@@ -119,8 +156,10 @@ FlipCost memoized(const FlipCost& base)
       return value;
     };
   if (base.face)
-    c.face = [caches, faces, f = base.face](VertexId x, VertexId y, VertexId z)
+    c.face = [caches, faces, f = base.face, m, box](VertexId x, VertexId y, VertexId z)
     {
+      if (separatedFromBox(*m, box, std::array<VertexId, 3>{ x, y, z }, false))
+        return 0;
       auto k = sortedTriangle(x, y, z);
       int value = faces->find(k);
       if (value < 0)
@@ -131,8 +170,10 @@ FlipCost memoized(const FlipCost& base)
       return value;
     };
   if (base.edge)
-    c.edge = [caches, edges, f = base.edge](VertexId u, VertexId v)
+    c.edge = [caches, edges, f = base.edge, m, box](VertexId u, VertexId v)
     {
+      if (separatedFromBox(*m, box, std::array<VertexId, 2>{ u, v }, false))
+        return 0;
       std::array<VertexId, 2> k = { std::min(u, v), std::max(u, v) };
       int value = edges->find(k);
       if (value < 0)
@@ -202,9 +243,10 @@ private:
     return geometry::simplexMeetsTetInterior(simplex, count, p);
   }
 
-  FlipCost edgeCost(VertexId a, VertexId b) const;
-  FlipCost faceCost(const std::array<VertexId, 3>& tri) const;
-  FlipCost edgeAndFacesCost(std::size_t e) const;
+  ItemCost edgeCost(VertexId a, VertexId b) const;
+  ItemCost faceCost(const std::array<VertexId, 3>& tri) const;
+  ItemCost edgeAndFacesCost(std::size_t e) const;
+  std::array<double, 6> boxOf(std::initializer_list<VertexId> vertices) const;
   // Tets whose tet/face/edge terms of `cost` are positive, grown from the star of `seed`.
   void collectPipe(VertexId seed, const FlipCost& cost, std::vector<TetId>& pipe);
   // Sum of the measure over t and its faces and edges; cached per tet (checked against its
@@ -212,7 +254,7 @@ private:
   int tetCost(const FlipCost& cost, TetId t);
   int exactTetCost(const FlipCost& cost, const TetVertices& v) const;
   // Greedy strictly-improving flips on the pipe; true when `done()` holds at the end.
-  bool flipUntil(VertexId seed, const FlipCost& cost, const std::function<bool()>& done);
+  bool flipUntil(VertexId seed, const ItemCost& cost, const std::function<bool()>& done);
   // Collects the pipe and the flips on it; returns the best strict gain (0: none), with the
   // best move in `best` and the cost-neutral ones appended to `neutral` when given.
   int findMoves(VertexId seed,
@@ -223,7 +265,7 @@ private:
     std::vector<FlipCandidate>* neutral);
   bool lookahead(VertexId seed, const FlipCost& cost, std::vector<FlipCandidate>& neutral);
   bool shrinkCrossingShell(const std::vector<TetId>& pipe, const FlipCost& cost);
-  bool insertSteinerNear(VertexId seed, const FlipCost& cost);
+  bool insertSteinerNear(VertexId seed, const ItemCost& cost);
   bool onInputSurface(const double* x) const;
   void markConstrained(FaceRef face);
   // True when the time budget is spent or the progress callback asked to abort (polled a
@@ -246,7 +288,7 @@ private:
     std::uint64_t clock = 0;
     std::vector<VertexId> vertices;
   };
-  void recordFailure(Failure& failure, VertexId seed, const FlipCost& cost);
+  void recordFailure(Failure& failure, VertexId seed, const ItemCost& cost);
   bool unchangedSince(const Failure& failure) const;
   // flip23Candidate / edgeRemovalCandidate for the cost of the current flip search, reused
   // while the tets they examine are the same (ids and vertices; flags do not change during a
@@ -355,10 +397,10 @@ void Recovery::replace(const std::vector<TetId>& oldTets,
       touch(v);
 }
 
-void Recovery::recordFailure(Failure& failure, VertexId seed, const FlipCost& cost)
+void Recovery::recordFailure(Failure& failure, VertexId seed, const ItemCost& cost)
 {
   std::vector<TetId> pipe, star;
-  collectPipe(seed, memoized(cost), pipe);
+  collectPipe(seed, memoized(cost, mesh_), pipe);
   vertexStar(mesh_, index_, seed, star); // the search starts from the seed's star
   pipe.insert(pipe.end(), star.begin(), star.end());
   failure.vertices.clear();
@@ -431,9 +473,26 @@ bool Recovery::insertSteiner(const double* c, TetId tet)
   return true;
 }
 
-FlipCost Recovery::edgeCost(VertexId a, VertexId b) const
+std::array<double, 6> Recovery::boxOf(std::initializer_list<VertexId> vertices) const
 {
-  FlipCost c;
+  std::array<double, 6> box;
+  for (int k = 0; k < 3; ++k)
+  {
+    box[k] = point(*vertices.begin())[k];
+    box[k + 3] = box[k];
+    for (VertexId v : vertices)
+    {
+      box[k] = std::min(box[k], point(v)[k]);
+      box[k + 3] = std::max(box[k + 3], point(v)[k]);
+    }
+  }
+  return box;
+}
+
+ItemCost Recovery::edgeCost(VertexId a, VertexId b) const
+{
+  ItemCost c;
+  c.box = boxOf({ a, b });
   c.tet = [this, a, b](const TetVertices& t)
   {
     const double* s[2] = { point(a), point(b) };
@@ -448,15 +507,24 @@ FlipCost Recovery::edgeCost(VertexId a, VertexId b) const
   return c;
 }
 
-FlipCost Recovery::edgeAndFacesCost(std::size_t e) const
+ItemCost Recovery::edgeAndFacesCost(std::size_t e) const
 {
   // The missing edge plus the input triangles around it: tets that straddle a planar part of
   // the surface next to the edge are obstacles too, and counting them lets flips (and Steiner
   // points near the middle of their crossing edges, far from the surface) clear them.
   std::vector<FlipCost> parts = { edgeCost(surface_.edges[e][0], surface_.edges[e][1]) };
+  ItemCost c;
+  c.box = boxOf({ surface_.edges[e][0], surface_.edges[e][1] });
   for (const auto& tri : edgeTriangles_[e])
+  {
     parts.push_back(faceCost(tri));
-  FlipCost c;
+    const std::array<double, 6> box = boxOf({ tri[0], tri[1], tri[2] });
+    for (int k = 0; k < 3; ++k)
+    {
+      c.box[k] = std::min(c.box[k], box[k]);
+      c.box[k + 3] = std::max(c.box[k + 3], box[k + 3]);
+    }
+  }
   c.tet = [parts](const TetVertices& t)
   {
     int sum = 0;
@@ -481,9 +549,10 @@ FlipCost Recovery::edgeAndFacesCost(std::size_t e) const
   return c;
 }
 
-FlipCost Recovery::faceCost(const std::array<VertexId, 3>& tri) const
+ItemCost Recovery::faceCost(const std::array<VertexId, 3>& tri) const
 {
-  FlipCost c;
+  ItemCost c;
+  c.box = boxOf({ tri[0], tri[1], tri[2] });
   c.tet = [this, tri](const TetVertices& t)
   {
     const double* s[3] = { point(tri[0]), point(tri[1]), point(tri[2]) };
@@ -688,10 +757,10 @@ bool Recovery::lookahead(VertexId seed, const FlipCost& cost, std::vector<FlipCa
 }
 
 bool Recovery::flipUntil(VertexId seed,
-  const FlipCost& exactCost,
+  const ItemCost& exactCost,
   const std::function<bool()>& done)
 {
-  const FlipCost cost = memoized(exactCost);
+  const FlipCost cost = memoized(exactCost, mesh_);
   flip23Cache_.clear();
   edgeRemovalCache_.clear();
   ++tetCostEpoch_; // forget the cached tet costs (in O(1))
@@ -791,9 +860,9 @@ bool Recovery::onInputSurface(const double* x) const
   return false;
 }
 
-bool Recovery::insertSteinerNear(VertexId seed, const FlipCost& exactCost)
+bool Recovery::insertSteinerNear(VertexId seed, const ItemCost& exactCost)
 {
-  const FlipCost cost = memoized(exactCost);
+  const FlipCost cost = memoized(exactCost, mesh_);
   std::vector<TetId> pipe;
   collectPipe(seed, cost, pipe);
   // Candidate positions, best first. (1) Next to the middle of an edge that cuts the item,
@@ -982,7 +1051,7 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
     // up again just before, as work on other items may have recovered them meanwhile.
     int inserted = 0;
     auto steinerFor =
-      [&](std::size_t key, const std::string& name, VertexId seed, const FlipCost& cost)
+      [&](std::size_t key, const std::string& name, VertexId seed, const ItemCost& cost)
     {
       currentItem_ = name;
       if (interrupted())
