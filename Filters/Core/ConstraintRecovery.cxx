@@ -120,6 +120,65 @@ bool separatedFromBox(const TetMesh& mesh,
   return false;
 }
 
+// Open-addressing set of vertex tuples for the scratch of one flip search step: cleared in
+// O(1) by an epoch, its slots kept between steps (no allocation per element).
+template<typename Key>
+class ScratchSet
+{
+public:
+  void clear()
+  {
+    size_ = 0;
+    if (++epoch_ == 0)
+    {
+      for (Slot& slot : slots_)
+        slot.epoch = 0;
+      epoch_ = 1;
+    }
+  }
+  // True when k was not in the set (and is now).
+  bool insert(const Key& k)
+  {
+    if (2 * (size_ + 1) > slots_.size())
+      grow();
+    std::size_t mask = slots_.size() - 1;
+    for (std::size_t i = TupleHash()(k) & mask;; i = (i + 1) & mask)
+    {
+      if (slots_[i].epoch != epoch_)
+      {
+        slots_[i] = { k, epoch_ };
+        ++size_;
+        return true;
+      }
+      if (slots_[i].key == k)
+        return false;
+    }
+  }
+
+private:
+  struct Slot
+  {
+    Key key;
+    std::uint32_t epoch = 0;
+  };
+  void grow()
+  {
+    std::vector<Slot> old(std::max<std::size_t>(64, 2 * slots_.size()));
+    old.swap(slots_);
+    std::uint32_t liveEpoch = epoch_;
+    epoch_ = 1;
+    size_ = 0;
+    for (const Slot& slot : old)
+    {
+      if (slot.epoch == liveEpoch && liveEpoch != 0)
+        insert(slot.key);
+    }
+  }
+  std::vector<Slot> slots_;
+  std::size_t size_ = 0;
+  std::uint32_t epoch_ = 1;
+};
+
 // The same measure, each exact test run once per (unordered) tet, face or edge: a flip search
 // prices the same entities again and again (every move rescans its pipe, every edge removal
 // prices all ring triangulations). All three tests are symmetric in their vertices. Entities
@@ -326,8 +385,8 @@ private:
   std::vector<Failure> failures_; // edges by index, then triangles after them
   std::unordered_map<FaceRef, CachedCandidate> flip23Cache_;
   std::vector<TetId> shellScratch_, starScratch_;
-  std::unordered_set<std::array<VertexId, 3>, TupleHash> triedFaces_; // findMoves scratch
-  std::unordered_set<std::uint64_t> triedEdges_;
+  ScratchSet<std::array<VertexId, 3>> triedFaces_; // findMoves scratch
+  ScratchSet<std::array<VertexId, 2>> triedEdges_;
   std::vector<std::uint32_t> pipeStamp_;
   std::uint32_t pipeEpoch_ = 0;
   struct TetCostEntry
@@ -688,7 +747,7 @@ int Recovery::findMoves(VertexId seed,
     for (int f = 0; f < 4; ++f)
     {
       const int* fv = kFaceVertices[f];
-      if (!triedFaces.insert(sortedTriangle(v[fv[0]], v[fv[1]], v[fv[2]])).second)
+      if (!triedFaces.insert(sortedTriangle(v[fv[0]], v[fv[1]], v[fv[2]])))
         continue;
       if (cachedFlip23(t, f, cost, candidate))
         consider(true);
@@ -698,7 +757,8 @@ int Recovery::findMoves(VertexId seed,
       for (int j = i + 1; j < 4; ++j)
       {
         std::uint64_t key = edgeKey(v[i], v[j]);
-        if (inputEdges_.count(key) || !triedEdges.insert(key).second)
+        if (inputEdges_.count(key) ||
+          !triedEdges.insert({ std::min(v[i], v[j]), std::max(v[i], v[j]) }))
           continue;
         if (cachedEdgeRemoval(t, v[i], v[j], cost, candidate))
           consider(false);
