@@ -347,7 +347,9 @@ private:
     std::uint64_t clock = 0;
     std::vector<VertexId> vertices;
   };
-  void recordFailure(Failure& failure, VertexId seed, const ItemCost& cost);
+  // Records the failure of the flip search just ended, with the measure it used (memoized, so
+  // its pipe is found again without new exact tests).
+  void recordFailure(Failure& failure, VertexId seed, const FlipCost& searchCost);
   bool unchangedSince(const Failure& failure) const;
   // flip23Candidate / edgeRemovalCandidate for the cost of the current flip search, reused
   // while the tets they examine are the same (ids and vertices; flags do not change during a
@@ -400,6 +402,7 @@ private:
   const FlipCost* tetCostOwner_ = nullptr;
   std::vector<VertexId> ringScratch_;
   std::unordered_map<std::array<VertexId, 3>, CachedCandidate, TupleHash> edgeRemovalCache_;
+  FlipCost lastSearchCost_; // the memoized measure of the latest flipUntil
 };
 
 bool Recovery::cachedFlip23(TetId t, int f, const FlipCost& cost, FlipCandidate& out)
@@ -456,10 +459,10 @@ void Recovery::replace(const std::vector<TetId>& oldTets,
       touch(v);
 }
 
-void Recovery::recordFailure(Failure& failure, VertexId seed, const ItemCost& cost)
+void Recovery::recordFailure(Failure& failure, VertexId seed, const FlipCost& searchCost)
 {
   std::vector<TetId> pipe, star;
-  collectPipe(seed, memoized(cost, mesh_), pipe);
+  collectPipe(seed, searchCost, pipe);
   vertexStar(mesh_, index_, seed, star); // the search starts from the seed's star
   pipe.insert(pipe.end(), star.begin(), star.end());
   failure.vertices.clear();
@@ -821,6 +824,7 @@ bool Recovery::flipUntil(VertexId seed,
   const std::function<bool()>& done)
 {
   const FlipCost cost = memoized(exactCost, mesh_);
+  lastSearchCost_ = cost;
   flip23Cache_.clear();
   edgeRemovalCache_.clear();
   ++tetCostEpoch_; // forget the cached tet costs (in O(1))
@@ -1065,7 +1069,7 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
       currentItem_ = edgeName(e);
       if (!flipUntil(a, edgeCost(a, b), exists) && !interrupted_ &&
         !flipUntil(a, edgeAndFacesCost(e), exists) && !interrupted_)
-        recordFailure(failures_[e], a, edgeAndFacesCost(e));
+        recordFailure(failures_[e], a, lastSearchCost_);
       if (interrupted_)
         return result_;
     }
@@ -1089,7 +1093,7 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
           return face >= 0;
         };
         if (!flipUntil(t[0], faceCost(t), exists) && !interrupted_)
-          recordFailure(failures_[edges.size() + i], t[0], faceCost(t));
+          recordFailure(failures_[edges.size() + i], t[0], lastSearchCost_);
         if (interrupted_)
           return result_;
       }
