@@ -89,11 +89,105 @@ private:
   std::size_t size_ = 0;
 };
 
+// The measure of how much of the mesh a missing item cuts, with the bounding box of the
+// item (of all its parts for a compound measure): an entity whose box is separated from it
+// scores 0 without an exact test.
+struct ItemCost : FlipCost
+{
+  std::array<double, 6> box = { 0, 0, 0, 0, 0, 0 }; // min x, y, z, max x, y, z
+};
+
+// True when the points of `ids` all lie on one side of `box` along some axis: strictly
+// (open = false), or possibly on its boundary too (open = true, for an open set such as a
+// tet interior, whose coordinates never reach its own bounding box).
+template<std::size_t N>
+bool separatedFromBox(const TetMesh& mesh,
+  const std::array<double, 6>& box,
+  const std::array<VertexId, N>& ids,
+  bool open)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    double lo = mesh.point(ids[0])[k], hi = lo;
+    for (std::size_t i = 1; i < N; ++i)
+    {
+      lo = std::min(lo, mesh.point(ids[i])[k]);
+      hi = std::max(hi, mesh.point(ids[i])[k]);
+    }
+    if (open ? (hi <= box[k] || lo >= box[k + 3]) : (hi < box[k] || lo > box[k + 3]))
+      return true;
+  }
+  return false;
+}
+
+// Open-addressing set of vertex tuples for the scratch of one flip search step: cleared in
+// O(1) by an epoch, its slots kept between steps (no allocation per element).
+template<typename Key>
+class ScratchSet
+{
+public:
+  void clear()
+  {
+    size_ = 0;
+    if (++epoch_ == 0)
+    {
+      for (Slot& slot : slots_)
+        slot.epoch = 0;
+      epoch_ = 1;
+    }
+  }
+  // True when k was not in the set (and is now).
+  bool insert(const Key& k)
+  {
+    if (2 * (size_ + 1) > slots_.size())
+      grow();
+    std::size_t mask = slots_.size() - 1;
+    for (std::size_t i = TupleHash()(k) & mask;; i = (i + 1) & mask)
+    {
+      if (slots_[i].epoch != epoch_)
+      {
+        slots_[i] = { k, epoch_ };
+        ++size_;
+        return true;
+      }
+      if (slots_[i].key == k)
+        return false;
+    }
+  }
+
+private:
+  struct Slot
+  {
+    Key key;
+    std::uint32_t epoch = 0;
+  };
+  void grow()
+  {
+    std::vector<Slot> old(std::max<std::size_t>(64, 2 * slots_.size()));
+    old.swap(slots_);
+    std::uint32_t liveEpoch = epoch_;
+    epoch_ = 1;
+    size_ = 0;
+    for (const Slot& slot : old)
+    {
+      if (slot.epoch == liveEpoch && liveEpoch != 0)
+        insert(slot.key);
+    }
+  }
+  std::vector<Slot> slots_;
+  std::size_t size_ = 0;
+  std::uint32_t epoch_ = 1;
+};
+
 // The same measure, each exact test run once per (unordered) tet, face or edge: a flip search
 // prices the same entities again and again (every move rescans its pipe, every edge removal
-// prices all ring triangulations). All three tests are symmetric in their vertices.
-FlipCost memoized(const FlipCost& base)
+// prices all ring triangulations). All three tests are symmetric in their vertices. Entities
+// separated from the item's box score 0 before the look-up (the tests count tet interiors,
+// open triangles and open segments, so only separation counts, not touching boxes).
+FlipCost memoized(const ItemCost& base, const TetMesh& mesh)
 {
+  const TetMesh* m = &mesh;
+  const std::array<double, 6> box = base.box;
   struct Caches
   {
     FlatMemo<std::array<VertexId, 4>> tets;
@@ -106,8 +200,10 @@ FlipCost memoized(const FlipCost& base)
   FlatMemo<std::array<VertexId, 2>>* edges = &caches->edges;
   FlipCost c;
   if (base.tet)
-    c.tet = [caches, tets, f = base.tet](const TetVertices& t)
+    c.tet = [caches, tets, f = base.tet, m, box](const TetVertices& t)
     {
+      if (separatedFromBox(*m, box, t, true))
+        return 0;
       TetVertices k = t;
       std::sort(k.begin(), k.end());
       int value = tets->find(k);
@@ -119,8 +215,10 @@ FlipCost memoized(const FlipCost& base)
       return value;
     };
   if (base.face)
-    c.face = [caches, faces, f = base.face](VertexId x, VertexId y, VertexId z)
+    c.face = [caches, faces, f = base.face, m, box](VertexId x, VertexId y, VertexId z)
     {
+      if (separatedFromBox(*m, box, std::array<VertexId, 3>{ x, y, z }, false))
+        return 0;
       auto k = sortedTriangle(x, y, z);
       int value = faces->find(k);
       if (value < 0)
@@ -131,8 +229,10 @@ FlipCost memoized(const FlipCost& base)
       return value;
     };
   if (base.edge)
-    c.edge = [caches, edges, f = base.edge](VertexId u, VertexId v)
+    c.edge = [caches, edges, f = base.edge, m, box](VertexId u, VertexId v)
     {
+      if (separatedFromBox(*m, box, std::array<VertexId, 2>{ u, v }, false))
+        return 0;
       std::array<VertexId, 2> k = { std::min(u, v), std::max(u, v) };
       int value = edges->find(k);
       if (value < 0)
@@ -202,9 +302,10 @@ private:
     return geometry::simplexMeetsTetInterior(simplex, count, p);
   }
 
-  FlipCost edgeCost(VertexId a, VertexId b) const;
-  FlipCost faceCost(const std::array<VertexId, 3>& tri) const;
-  FlipCost edgeAndFacesCost(std::size_t e) const;
+  ItemCost edgeCost(VertexId a, VertexId b) const;
+  ItemCost faceCost(const std::array<VertexId, 3>& tri) const;
+  ItemCost edgeAndFacesCost(std::size_t e) const;
+  std::array<double, 6> boxOf(std::initializer_list<VertexId> vertices) const;
   // Tets whose tet/face/edge terms of `cost` are positive, grown from the star of `seed`.
   void collectPipe(VertexId seed, const FlipCost& cost, std::vector<TetId>& pipe);
   // Sum of the measure over t and its faces and edges; cached per tet (checked against its
@@ -212,7 +313,7 @@ private:
   int tetCost(const FlipCost& cost, TetId t);
   int exactTetCost(const FlipCost& cost, const TetVertices& v) const;
   // Greedy strictly-improving flips on the pipe; true when `done()` holds at the end.
-  bool flipUntil(VertexId seed, const FlipCost& cost, const std::function<bool()>& done);
+  bool flipUntil(VertexId seed, const ItemCost& cost, const std::function<bool()>& done);
   // Collects the pipe and the flips on it; returns the best strict gain (0: none), with the
   // best move in `best` and the cost-neutral ones appended to `neutral` when given.
   int findMoves(VertexId seed,
@@ -223,7 +324,7 @@ private:
     std::vector<FlipCandidate>* neutral);
   bool lookahead(VertexId seed, const FlipCost& cost, std::vector<FlipCandidate>& neutral);
   bool shrinkCrossingShell(const std::vector<TetId>& pipe, const FlipCost& cost);
-  bool insertSteinerNear(VertexId seed, const FlipCost& cost);
+  bool insertSteinerNear(VertexId seed, const ItemCost& cost);
   bool onInputSurface(const double* x) const;
   void markConstrained(FaceRef face);
   // True when the time budget is spent or the progress callback asked to abort (polled a
@@ -246,7 +347,9 @@ private:
     std::uint64_t clock = 0;
     std::vector<VertexId> vertices;
   };
-  void recordFailure(Failure& failure, VertexId seed, const FlipCost& cost);
+  // Records the failure of the flip search just ended, with the measure it used (memoized, so
+  // its pipe is found again without new exact tests).
+  void recordFailure(Failure& failure, VertexId seed, const FlipCost& searchCost);
   bool unchangedSince(const Failure& failure) const;
   // flip23Candidate / edgeRemovalCandidate for the cost of the current flip search, reused
   // while the tets they examine are the same (ids and vertices; flags do not change during a
@@ -284,8 +387,8 @@ private:
   std::vector<Failure> failures_; // edges by index, then triangles after them
   std::unordered_map<FaceRef, CachedCandidate> flip23Cache_;
   std::vector<TetId> shellScratch_, starScratch_;
-  std::unordered_set<std::array<VertexId, 3>, TupleHash> triedFaces_; // findMoves scratch
-  std::unordered_set<std::uint64_t> triedEdges_;
+  ScratchSet<std::array<VertexId, 3>> triedFaces_; // findMoves scratch
+  ScratchSet<std::array<VertexId, 2>> triedEdges_;
   std::vector<std::uint32_t> pipeStamp_;
   std::uint32_t pipeEpoch_ = 0;
   struct TetCostEntry
@@ -299,6 +402,7 @@ private:
   const FlipCost* tetCostOwner_ = nullptr;
   std::vector<VertexId> ringScratch_;
   std::unordered_map<std::array<VertexId, 3>, CachedCandidate, TupleHash> edgeRemovalCache_;
+  FlipCost lastSearchCost_; // the memoized measure of the latest flipUntil
 };
 
 bool Recovery::cachedFlip23(TetId t, int f, const FlipCost& cost, FlipCandidate& out)
@@ -355,10 +459,10 @@ void Recovery::replace(const std::vector<TetId>& oldTets,
       touch(v);
 }
 
-void Recovery::recordFailure(Failure& failure, VertexId seed, const FlipCost& cost)
+void Recovery::recordFailure(Failure& failure, VertexId seed, const FlipCost& searchCost)
 {
   std::vector<TetId> pipe, star;
-  collectPipe(seed, memoized(cost), pipe);
+  collectPipe(seed, searchCost, pipe);
   vertexStar(mesh_, index_, seed, star); // the search starts from the seed's star
   pipe.insert(pipe.end(), star.begin(), star.end());
   failure.vertices.clear();
@@ -431,9 +535,26 @@ bool Recovery::insertSteiner(const double* c, TetId tet)
   return true;
 }
 
-FlipCost Recovery::edgeCost(VertexId a, VertexId b) const
+std::array<double, 6> Recovery::boxOf(std::initializer_list<VertexId> vertices) const
 {
-  FlipCost c;
+  std::array<double, 6> box;
+  for (int k = 0; k < 3; ++k)
+  {
+    box[k] = point(*vertices.begin())[k];
+    box[k + 3] = box[k];
+    for (VertexId v : vertices)
+    {
+      box[k] = std::min(box[k], point(v)[k]);
+      box[k + 3] = std::max(box[k + 3], point(v)[k]);
+    }
+  }
+  return box;
+}
+
+ItemCost Recovery::edgeCost(VertexId a, VertexId b) const
+{
+  ItemCost c;
+  c.box = boxOf({ a, b });
   c.tet = [this, a, b](const TetVertices& t)
   {
     const double* s[2] = { point(a), point(b) };
@@ -448,15 +569,24 @@ FlipCost Recovery::edgeCost(VertexId a, VertexId b) const
   return c;
 }
 
-FlipCost Recovery::edgeAndFacesCost(std::size_t e) const
+ItemCost Recovery::edgeAndFacesCost(std::size_t e) const
 {
   // The missing edge plus the input triangles around it: tets that straddle a planar part of
   // the surface next to the edge are obstacles too, and counting them lets flips (and Steiner
   // points near the middle of their crossing edges, far from the surface) clear them.
   std::vector<FlipCost> parts = { edgeCost(surface_.edges[e][0], surface_.edges[e][1]) };
+  ItemCost c;
+  c.box = boxOf({ surface_.edges[e][0], surface_.edges[e][1] });
   for (const auto& tri : edgeTriangles_[e])
+  {
     parts.push_back(faceCost(tri));
-  FlipCost c;
+    const std::array<double, 6> box = boxOf({ tri[0], tri[1], tri[2] });
+    for (int k = 0; k < 3; ++k)
+    {
+      c.box[k] = std::min(c.box[k], box[k]);
+      c.box[k + 3] = std::max(c.box[k + 3], box[k + 3]);
+    }
+  }
   c.tet = [parts](const TetVertices& t)
   {
     int sum = 0;
@@ -481,9 +611,10 @@ FlipCost Recovery::edgeAndFacesCost(std::size_t e) const
   return c;
 }
 
-FlipCost Recovery::faceCost(const std::array<VertexId, 3>& tri) const
+ItemCost Recovery::faceCost(const std::array<VertexId, 3>& tri) const
 {
-  FlipCost c;
+  ItemCost c;
+  c.box = boxOf({ tri[0], tri[1], tri[2] });
   c.tet = [this, tri](const TetVertices& t)
   {
     const double* s[3] = { point(tri[0]), point(tri[1]), point(tri[2]) };
@@ -619,7 +750,7 @@ int Recovery::findMoves(VertexId seed,
     for (int f = 0; f < 4; ++f)
     {
       const int* fv = kFaceVertices[f];
-      if (!triedFaces.insert(sortedTriangle(v[fv[0]], v[fv[1]], v[fv[2]])).second)
+      if (!triedFaces.insert(sortedTriangle(v[fv[0]], v[fv[1]], v[fv[2]])))
         continue;
       if (cachedFlip23(t, f, cost, candidate))
         consider(true);
@@ -629,7 +760,8 @@ int Recovery::findMoves(VertexId seed,
       for (int j = i + 1; j < 4; ++j)
       {
         std::uint64_t key = edgeKey(v[i], v[j]);
-        if (inputEdges_.count(key) || !triedEdges.insert(key).second)
+        if (inputEdges_.count(key) ||
+          !triedEdges.insert({ std::min(v[i], v[j]), std::max(v[i], v[j]) }))
           continue;
         if (cachedEdgeRemoval(t, v[i], v[j], cost, candidate))
           consider(false);
@@ -688,10 +820,11 @@ bool Recovery::lookahead(VertexId seed, const FlipCost& cost, std::vector<FlipCa
 }
 
 bool Recovery::flipUntil(VertexId seed,
-  const FlipCost& exactCost,
+  const ItemCost& exactCost,
   const std::function<bool()>& done)
 {
-  const FlipCost cost = memoized(exactCost);
+  const FlipCost cost = memoized(exactCost, mesh_);
+  lastSearchCost_ = cost;
   flip23Cache_.clear();
   edgeRemovalCache_.clear();
   ++tetCostEpoch_; // forget the cached tet costs (in O(1))
@@ -791,9 +924,9 @@ bool Recovery::onInputSurface(const double* x) const
   return false;
 }
 
-bool Recovery::insertSteinerNear(VertexId seed, const FlipCost& exactCost)
+bool Recovery::insertSteinerNear(VertexId seed, const ItemCost& exactCost)
 {
-  const FlipCost cost = memoized(exactCost);
+  const FlipCost cost = memoized(exactCost, mesh_);
   std::vector<TetId> pipe;
   collectPipe(seed, cost, pipe);
   // Candidate positions, best first. (1) Next to the middle of an edge that cuts the item,
@@ -936,7 +1069,7 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
       currentItem_ = edgeName(e);
       if (!flipUntil(a, edgeCost(a, b), exists) && !interrupted_ &&
         !flipUntil(a, edgeAndFacesCost(e), exists) && !interrupted_)
-        recordFailure(failures_[e], a, edgeAndFacesCost(e));
+        recordFailure(failures_[e], a, lastSearchCost_);
       if (interrupted_)
         return result_;
     }
@@ -960,7 +1093,7 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
           return face >= 0;
         };
         if (!flipUntil(t[0], faceCost(t), exists) && !interrupted_)
-          recordFailure(failures_[edges.size() + i], t[0], faceCost(t));
+          recordFailure(failures_[edges.size() + i], t[0], lastSearchCost_);
         if (interrupted_)
           return result_;
       }
@@ -982,7 +1115,7 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
     // up again just before, as work on other items may have recovered them meanwhile.
     int inserted = 0;
     auto steinerFor =
-      [&](std::size_t key, const std::string& name, VertexId seed, const FlipCost& cost)
+      [&](std::size_t key, const std::string& name, VertexId seed, const ItemCost& cost)
     {
       currentItem_ = name;
       if (interrupted())

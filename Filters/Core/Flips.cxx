@@ -25,8 +25,16 @@ int priceEdge(const FlipCost& c, VertexId a, VertexId b)
 
 bool positive(const TetMesh& mesh, const TetVertices& t)
 {
-  return predicates::orient3d(
-           mesh.point(t[0]), mesh.point(t[1]), mesh.point(t[2]), mesh.point(t[3])) > 0;
+  const double *a = mesh.point(t[0]), *b = mesh.point(t[1]), *c = mesh.point(t[2]),
+               *d = mesh.point(t[3]);
+  // Four points on one axis-aligned plane (common in CAD input) are exactly flat: answer
+  // without the slow exact stage that orient3d needs to prove a zero.
+  for (int k = 0; k < 3; ++k)
+  {
+    if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k])
+      return false;
+  }
+  return predicates::orient3d(a, b, c, d) > 0;
 }
 
 TetVertices tetOf(const TetMesh& mesh, TetId t)
@@ -134,6 +142,18 @@ bool edgeRemovalCandidate(const TetMesh& mesh,
   thread_local std::vector<Score> best;
   best.assign(static_cast<std::size_t>(n) * n, Score());
   auto at = [&](int i, int k) -> Score& { return best[static_cast<std::size_t>(i) * n + k]; };
+  // Cost of the edge (ring[a], ring[b]) and its faces with p and q, priced once per pair
+  // (-1: not yet) instead of once per triangle that uses the pair.
+  thread_local std::vector<int> pairCost;
+  pairCost.assign(static_cast<std::size_t>(n) * n, -1);
+  auto pricePair = [&](int a, int b)
+  {
+    int& c = pairCost[static_cast<std::size_t>(a) * n + b];
+    if (c < 0)
+      c = priceEdge(cost, ring[a], ring[b]) + priceFace(cost, p, ring[a], ring[b]) +
+        priceFace(cost, q, ring[a], ring[b]);
+    return c;
+  };
   for (int span = 2; span < n; ++span)
   {
     for (int i = 0; i + span < n; ++i)
@@ -153,8 +173,7 @@ bool edgeRemovalCandidate(const TetMesh& mesh,
             c = -1;
             break;
           }
-          c += sub.cost + priceEdge(cost, ring[a], ring[b]) + priceFace(cost, p, ring[a], ring[b]) +
-            priceFace(cost, q, ring[a], ring[b]);
+          c += sub.cost + pricePair(a, b);
           qual = std::min(qual, sub.quality);
         }
         if (c < 0)

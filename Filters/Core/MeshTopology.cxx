@@ -8,11 +8,17 @@ namespace tetmesher
 
 void VertexTetIndex::rebuild(const TetMesh& mesh)
 {
+  // The last live tet of each vertex, as note() in id order gives; written directly (this
+  // runs after every recovery Steiner point, over the whole mesh).
   vertexTet_.assign(mesh.vertexCount(), -1);
-  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+  const VertexId* tets = mesh.tets.data();
+  const TetId count = mesh.tetCapacity();
+  for (TetId t = 0; t < count; ++t, tets += 4)
   {
-    if (!mesh.isDeleted(t))
-      note(t, mesh);
+    if (tets[0] == kDeletedTet)
+      continue;
+    for (int i = 0; i < 4; ++i)
+      vertexTet_[tets[i]] = t;
   }
 }
 
