@@ -5,6 +5,7 @@
 #include "MeshTopology.h"
 #include "Predicates.h"
 #include "RecoveryGeometry.h"
+#include "TriangleIntersection.h"
 
 #include <algorithm>
 #include <array>
@@ -325,6 +326,10 @@ private:
   bool lookahead(VertexId seed, const FlipCost& cost, std::vector<FlipCandidate>& neutral);
   bool shrinkCrossingShell(const std::vector<TetId>& pipe, const FlipCost& cost);
   bool insertSteinerNear(VertexId seed, const ItemCost& cost);
+  // "input triangles i and j intersect" for the first input triangle of the recovery item
+  // `key` (an edge index, or edges.size() + a triangle index) that meets another one other
+  // than in a vertex or edge they share; "" if none does.
+  std::string intersectingTriangles(std::size_t key) const;
   bool onInputSurface(const double* x) const;
   void markConstrained(FaceRef face);
   // True when the time budget is spent or the progress callback asked to abort (polled a
@@ -992,6 +997,52 @@ bool Recovery::insertSteinerNear(VertexId seed, const ItemCost& exactCost)
   return false;
 }
 
+std::string Recovery::intersectingTriangles(std::size_t key) const
+{
+  const auto& triangles = surface_.triangles;
+  std::vector<std::size_t> mine;
+  if (key >= surface_.edges.size())
+    mine.push_back(key - surface_.edges.size());
+  else
+  {
+    const VertexId a = surface_.edges[key][0], b = surface_.edges[key][1];
+    for (std::size_t i = 0; i < triangles.size(); ++i)
+    {
+      const auto& t = triangles[i];
+      if (std::count(t.begin(), t.end(), a) + std::count(t.begin(), t.end(), b) == 2)
+        mine.push_back(i);
+    }
+  }
+  auto overlap = [](const std::array<double, 6>& x, const std::array<double, 6>& y)
+  {
+    for (int k = 0; k < 3; ++k)
+      if (x[k] > y[k + 3] || y[k] > x[k + 3])
+        return false;
+    return true;
+  };
+  for (std::size_t i : mine)
+  {
+    const auto& t = triangles[i];
+    const double* p[3] = { point(t[0]), point(t[1]), point(t[2]) };
+    if (isTriangleDegenerate(p[0], p[1], p[2]))
+      continue;
+    for (std::size_t j = 0; j < triangles.size(); ++j)
+    {
+      const auto& u = triangles[j];
+      if (j == i || !overlap(triangleBoxes_[i], triangleBoxes_[j]))
+        continue;
+      const double* q[3] = { point(u[0]), point(u[1]), point(u[2]) };
+      if (isTriangleDegenerate(q[0], q[1], q[2]) ||
+        !trianglesIntersectImproperly(p, t.data(), q, u.data()))
+        continue;
+      std::ostringstream out;
+      out << "input triangles " << std::min(i, j) << " and " << std::max(i, j) << " intersect";
+      return out.str();
+    }
+  }
+  return {};
+}
+
 void Recovery::markConstrained(FaceRef face)
 {
   TetId t = faceTet(face);
@@ -1121,20 +1172,32 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
       if (interrupted())
         return false;
       int& count = steinerPerItem_[key];
-      if (count >= options_.maxSteinerPerItem)
-        result_.error = "could not recover " + name + " with " + std::to_string(count) +
-          " Steiner points near it (self-intersecting or nearly degenerate input?)";
-      else if (static_cast<int>(result_.steinerVertices.size()) >= options_.maxSteinerPoints)
-        result_.error = "could not recover " + name + " within the budget of " +
-          std::to_string(options_.maxSteinerPoints) + " Steiner points";
-      else if (!insertSteinerNear(seed, cost))
-        result_.error = "could not recover " + name + ": no Steiner point could be placed near it";
-      else
+      // Unchecked input: once the item looks stuck, or when it fails, name an intersecting pair.
+      const int probeAt = options_.intersectionProbeAfter;
+      std::string crossing = probeAt > 0 && count == probeAt ? intersectingTriangles(key) : "";
+      if (crossing.empty())
       {
-        ++count;
-        ++inserted;
-        return true;
+        if (count >= options_.maxSteinerPerItem)
+          result_.error = "could not recover " + name + " with " + std::to_string(count) +
+            " Steiner points near it (self-intersecting or nearly degenerate input?)";
+        else if (static_cast<int>(result_.steinerVertices.size()) >= options_.maxSteinerPoints)
+          result_.error = "could not recover " + name + " within the budget of " +
+            std::to_string(options_.maxSteinerPoints) + " Steiner points";
+        else if (!insertSteinerNear(seed, cost))
+          result_.error =
+            "could not recover " + name + ": no Steiner point could be placed near it";
+        else
+        {
+          ++count;
+          ++inserted;
+          return true;
+        }
+        if (probeAt > 0 && count != probeAt)
+          crossing = intersectingTriangles(key);
       }
+      if (!crossing.empty())
+        result_.error = "could not recover " + name + ": " + crossing +
+          " (self-intersecting input, which the input check would have named)";
       return false;
     };
     for (std::size_t e = 0; e < edges.size(); ++e)

@@ -39,6 +39,11 @@ struct RecoveryOptions
   // Wall-clock budget in seconds (0: none); exceeding it ends recovery with an error naming
   // the item being worked on.
   double maxSeconds = 0;
+  // For input that was not checked: once an item has needed this many Steiner points, test
+  // its triangles against all others (exactly, boxes first: O(triangles) per item) and fail
+  // at once naming an intersecting pair, rather than after maxSteinerPerItem points (seconds
+  // on a self-intersecting surface). 0: never.
+  int intersectionProbeAfter = 0;
 };
 
 struct RecoveryResult

@@ -101,6 +101,8 @@ MesherResult meshSurface(const double* points,
     options.maxSteinerPoints >= 0 ? options.maxSteinerPoints : 100 + 4 * triangleCount;
   recoveryOptions.maxMovesPerItem = options.maxMovesPerItem;
   recoveryOptions.maxSeconds = options.maxSeconds;
+  // Unchecked input may intersect itself: name the pair as soon as an item looks stuck.
+  recoveryOptions.intersectionProbeAfter = options.validateInput ? 0 : 2;
   RecoveryResult recovery = recoverBoundary(
     mesh, surface, recoveryOptions, [&](double f) { return report(0.2 + 0.7 * f); });
   result.recoverySeconds = secondsSince(stageStart);

@@ -4,6 +4,7 @@
 // bit-identical input points, determinism.
 #include "MeshChecks.h"
 #include "Mesher.h"
+#include "SurfaceDiagnosis.h"
 #include "SurfaceGenerators.h"
 
 #include <gtest/gtest.h>
@@ -258,12 +259,27 @@ TEST(BoundaryMesh, RefusesSelfIntersectingSurface)
     meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount());
   EXPECT_FALSE(r.ok);
   EXPECT_NE(r.error.find("intersect"), std::string::npos) << r.error;
-  // Without the diagnosis, recovery must still fail in bounded time and name an item.
+  // Without the diagnosis, recovery must still fail in bounded time, name the item, and
+  // (probing the item's triangles once it looks stuck) a pair that really intersects.
   MesherOptions options;
   options.validateInput = false;
   r = meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), options);
   EXPECT_FALSE(r.ok);
   EXPECT_NE(r.error.find("could not recover input"), std::string::npos) << r.error;
+  const std::size_t at = r.error.find("input triangles ");
+  ASSERT_NE(at, std::string::npos) << r.error;
+  int first = -1, second = -1;
+  ASSERT_EQ(
+    std::sscanf(r.error.c_str() + at, "input triangles %d and %d intersect", &first, &second), 2)
+    << r.error;
+  const SurfaceDiagnosis d =
+    diagnoseSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount());
+  bool listed = false;
+  for (const DefectRecord& record : d.defects)
+    listed = listed ||
+      (record.kind == SurfaceDefect::SelfIntersection &&
+        record.triangleIds == std::vector<std::int32_t>{ first, second });
+  EXPECT_TRUE(listed) << r.error << "\n" << d.summary();
 }
 
 TEST(BoundaryMesh, ChecksCatchBrokenMeshes)
