@@ -55,21 +55,19 @@ def load_surface(path):
     (triangles, or polygons for some .off files)."""
     ext = os.path.splitext(path)[1].lower()
     if ext == ".off":
-        with open(path) as f:
-            words = []
-            for line in f:
-                line = line.split("#")[0]
-                words.extend(line.split())
-        assert words[0] == "OFF", path
-        nv, nf = int(words[1]), int(words[2])
-        p = 4
-        pts = np.array([float(w) for w in words[p:p + 3 * nv]], dtype=np.float64).reshape(nv, 3)
-        p += 3 * nv
-        # faces line by line (a face line may carry colours after its vertex ids)
+        # Line by line: COFF/NOFF vertex lines carry colours or normals after x y z, and face
+        # lines may carry colours after their vertex ids.
         with open(path) as f:
             lines = [l.split("#")[0].split() for l in f]
         lines = [l for l in lines if l]
-        faces = [[int(x) for x in l[1:1 + int(l[0])]] for l in lines[-nf:]] if nf else []
+        assert lines[0][0].endswith("OFF"), path
+        head = lines[0][1:] if len(lines[0]) > 1 else lines[1]
+        first = 1 if len(lines[0]) > 1 else 2
+        nv, nf = int(head[0]), int(head[1])
+        pts = np.array([[float(w) for w in l[:3]] for l in lines[first:first + nv]],
+                       dtype=np.float64).reshape(nv, 3)
+        faces = [[int(x) for x in l[1:1 + int(l[0])]]
+                 for l in lines[first + nv:first + nv + nf]]
         return pts, faces
     if ext == ".stl":
         from vtkmodules.vtkIOGeometry import vtkSTLReader
@@ -78,6 +76,9 @@ def load_surface(path):
     elif ext == ".vtp":
         from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
         r = vtkXMLPolyDataReader()
+    elif ext == ".ply":
+        from vtkmodules.vtkIOPLY import vtkPLYReader
+        r = vtkPLYReader()
     else:
         raise ValueError(path)
     r.SetFileName(path)
@@ -510,21 +511,22 @@ def delaunay3d_main(src, out):
         sys.exit(1)
 
 
-def load_cases(names):
+def load_cases(names, data=DATA):
     meta = {}
-    with open(os.path.join(DATA, "corpus.csv")) as f:
-        for row in csv.DictReader(f):
-            meta[row["name"]] = row
+    if os.path.exists(os.path.join(data, "corpus.csv")):
+        with open(os.path.join(data, "corpus.csv")) as f:
+            for row in csv.DictReader(f):
+                meta[row["name"]] = row
     files = {}
-    for fn in sorted(os.listdir(DATA)):
+    for fn in sorted(os.listdir(data)):
         base, ext = os.path.splitext(fn)
-        if ext in (".off", ".stl", ".vtp"):
+        if ext in (".off", ".stl", ".vtp", ".ply"):
             files[base if base not in files else base + "-" + ext[1:]] = fn
     cases = []
     for key, fn in files.items():
         if names and key not in names:
             continue
-        path = os.path.join(DATA, fn)
+        path = os.path.join(data, fn)
         pts, faces = load_surface(path)
         tris = triangulate(pts, faces)
         sid = shells(tris, len(pts))
@@ -607,6 +609,9 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="a handful of small cases: " + ",".join(QUICK))
     ap.add_argument("--cases", help="comma-separated case names (corpus.csv names)")
+    ap.add_argument("--data", default=DATA,
+                    help="folder of input surfaces (.off .stl .vtp .ply; default Data/), e.g. "
+                    "../shared/peer-tests/tetgentests-cgal")
     ap.add_argument("--tools", default=",".join(TOOLS), help="default: " + ",".join(TOOLS))
     ap.add_argument("--repeat", type=int, default=3, help="runs per fast job (median); slow jobs run once")
     ap.add_argument("--slow", type=float, default=2.0, help="a job slower than this many seconds runs once")
@@ -635,7 +640,7 @@ def main():
     for t in tools:
         if t not in TOOLS:
             sys.exit("unknown tool %s" % t)
-    cases = load_cases(names)
+    cases = load_cases(names, os.path.abspath(args.data))
     work = args.work or tempfile.mkdtemp(prefix="tetmesher-bench-")
     os.makedirs(args.out, exist_ok=True)
     log = os.path.join(work, "runs.log")
@@ -720,7 +725,8 @@ def write_outputs(args, rows, cases, tools, command, started, finished, qhist):
             w.writerow({k: ("%.6g" % v if isinstance(v, float) else v) for k, v in r.items()})
     v = versions(args.tetmesher)
     md = []
-    md.append("# TetMesher side-by-side benchmark on the Data/ corpus\n")
+    data = os.path.relpath(os.path.abspath(args.data), ROOT)
+    md.append("# TetMesher side-by-side benchmark on the %s corpus\n" % (data + "/"))
     md.append("- date: %s (UTC), %.0f s in all" % (started.strftime("%Y-%m-%d %H:%M"),
                                                  (finished - started).total_seconds()))
     md.append("- machine: %s; load average at the end %s (the machine is shared: times are noisy)"
