@@ -838,20 +838,25 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
         for (int sub = 0; sub < 2; ++sub)
         {
           const double shift = sub ? 0.5 : 0.0;
-          std::int64_t first[3], last[3];
+          double from[3], to[3];
           double positions = 1;
           bool keyable = true;
           for (int k = 0; k < 3; ++k)
           {
-            const double from = std::ceil((bmin[k] - lo[k]) / a - shift);
-            const double to = std::floor((bmax[k] - lo[k]) / a - shift);
-            keyable = keyable && to < kMaxLatticeIndex;
-            positions *= std::max(to - from + 1, 0.0);
-            first[k] = static_cast<std::int64_t>(from);
-            last[k] = static_cast<std::int64_t>(std::min(to, kMaxLatticeIndex));
+            from[k] = std::ceil((bmin[k] - lo[k]) / a - shift);
+            to[k] = std::floor((bmax[k] - lo[k]) / a - shift);
+            keyable = keyable && to[k] < kMaxLatticeIndex; // false for NaN too
+            positions *= std::max(to[k] - from[k] + 1, 0.0);
           }
           if (!keyable)
             continue;
+          // Only now, in range (from >= -1, as bmin >= lo), convert to integers.
+          std::int64_t first[3], last[3];
+          for (int k = 0; k < 3; ++k)
+          {
+            first[k] = static_cast<std::int64_t>(from[k]);
+            last[k] = static_cast<std::int64_t>(to[k]);
+          }
           candidates += positions;
           if (candidates > maxCandidates)
             break;
