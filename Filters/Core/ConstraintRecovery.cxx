@@ -1200,24 +1200,38 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
           " (self-intersecting input, which the input check would have named)";
       return false;
     };
+    // An item that already took kSteinerRamp points gets count / 4 more per round: each round
+    // reruns the flip searches of every missing item, so a hopeless item (nearly touching
+    // triangles) then fails after about 20 rounds instead of maxSteinerPerItem.
+    constexpr int kSteinerRamp = 8;
+    auto burst = [&](std::size_t key)
+    {
+      const int count = steinerPerItem_[key];
+      return count < kSteinerRamp ? 1 : count / 4;
+    };
     for (std::size_t e = 0; e < edges.size(); ++e)
     {
       VertexId a = edges[e][0], b = edges[e][1];
-      if (edgePresent(e))
-        continue;
-      // Alternate between placing the point against the edge alone and against the edge and
-      // its triangles (which reaches tets straddling a planar part of the surface).
-      bool alone = steinerPerItem_[e] % 2 == 0;
-      if (!steinerFor(e, edgeName(e), a, alone ? edgeCost(a, b) : edgeAndFacesCost(e)))
-        return result_;
+      for (int k = burst(e); k > 0 && !edgePresent(e); --k)
+      {
+        // Alternate between placing the point against the edge alone and against the edge
+        // and its triangles (which reaches tets straddling a planar part of the surface).
+        bool alone = steinerPerItem_[e] % 2 == 0;
+        if (!steinerFor(e, edgeName(e), a, alone ? edgeCost(a, b) : edgeAndFacesCost(e)))
+          return result_;
+      }
     }
     for (std::size_t i = 0; i < triangles.size() && inserted == 0; ++i)
     {
       const auto& t = triangles[i];
-      if (recovered[i] || findFace(mesh_, index_, t[0], t[1], t[2]) >= 0)
-        continue;
-      if (!steinerFor(edges.size() + i, triangleName(i), t[0], faceCost(t)))
-        return result_;
+      const std::size_t key = edges.size() + i;
+      for (int k = burst(key); k > 0; --k)
+      {
+        if (recovered[i] || findFace(mesh_, index_, t[0], t[1], t[2]) >= 0)
+          break;
+        if (!steinerFor(key, triangleName(i), t[0], faceCost(t)))
+          return result_;
+      }
     }
   }
 }
