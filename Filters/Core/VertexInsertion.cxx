@@ -17,8 +17,12 @@ namespace
 
 // Grows the cavity from t for the vertex xv (already placed); keeps the best acceptable one
 // in `out`, and in `valid` (when given) the best one whose cone is valid, acceptable or not.
-bool growCavity(
-  Context& ctx, TetId t, VertexId xv, int maxCavity, LocalMove& out, LocalMove* validOut = nullptr)
+bool growCavity(Context& ctx,
+  TetId t,
+  VertexId xv,
+  int maxCavity,
+  LocalMove& out,
+  LocalMove* validOut = nullptr)
 {
   TetMesh& m = ctx.mesh;
   std::vector<TetId> cavity = { t };
@@ -70,7 +74,11 @@ bool growCavity(
     newTets.clear();
     WorstOf newMin;
     bool valid = true;
-    std::size_t worst = 0;
+    bool doomed = false;
+    // The cavity grows across the face of the worst new tet that it may cross: a worst tet
+    // on a constrained face (a surface triangle) would stop it at the first tet, where the
+    // cone splits that tet and cannot be better (tets on the surface are the usual worst).
+    std::size_t worst = faces.size();
     double worstScore = kInf;
     edges.clear();
     for (std::size_t i = 0; i < faces.size(); ++i)
@@ -96,8 +104,13 @@ bool growCavity(
         sc = cand.eval.score;
       }
       else
+      {
         valid = false;
-      if (sc < worstScore)
+        // On a face the cavity never crosses, it stays in every larger cavity's cone.
+        if (m.neighbor(c, f) == kNoNeighbor || m.isConstrained(c, f))
+          doomed = true;
+      }
+      if (sc < worstScore && m.neighbor(c, f) != kNoNeighbor && !m.isConstrained(c, f))
       {
         worstScore = sc;
         worst = i;
@@ -133,11 +146,9 @@ bool growCavity(
         out.kind = 3;
       }
     }
-    const auto [c, f] = faces[worst];
-    FaceRef n = m.neighbor(c, f);
-    if (n == kNoNeighbor || m.isConstrained(c, f))
+    if (worst == faces.size() || doomed)
       break;
-    cavity.push_back(faceTet(n));
+    cavity.push_back(faceTet(m.neighbor(faces[worst].first, faces[worst].second)));
   }
   return found;
 }
@@ -148,8 +159,11 @@ bool growCavity(
 // floors of the acceptance rule against `old`. The candidate positions of insertion are
 // rarely the best for the cone the cavity ends with (on a tet spanning two surface
 // triangles, none of them is acceptable); this finds one that is.
-void polishPosition(
-  Context& ctx, VertexId xv, const std::vector<TetVertices>& cone, const WorstOf& old, double step)
+void polishPosition(Context& ctx,
+  VertexId xv,
+  const std::vector<TetVertices>& cone,
+  const WorstOf& old,
+  double step)
 {
   const double qFloor = std::min(old.q, ctx.floorQ);
   const double dihFloor = std::min(old.dih, ctx.floorDih);
@@ -230,6 +244,9 @@ bool findVertexInsertion(Context& ctx, TetId t, LocalMove& out, int maxCavity)
     std::array<double, 3> apex;
     for (int k = 0; k < 3; ++k) // the outward normal points away from the tet: go against it
       apex[k] = (a[k] + b[k] + c[k]) / 3 - nrm[k] / nn * le * std::sqrt(2.0 / 3.0);
+    candidates.push_back(apex);
+    for (int k = 0; k < 3; ++k) // half as high: inside more cavities' visibility region
+      apex[k] = (a[k] + b[k] + c[k]) / 3 - nrm[k] / nn * le * 0.5 * std::sqrt(2.0 / 3.0);
     candidates.push_back(apex);
   }
 
