@@ -245,9 +245,15 @@ bool findVertexInsertion(Context& ctx, TetId t, LocalMove& out, int maxCavity)
     for (int k = 0; k < 3; ++k) // the outward normal points away from the tet: go against it
       apex[k] = (a[k] + b[k] + c[k]) / 3 - nrm[k] / nn * le * std::sqrt(2.0 / 3.0);
     candidates.push_back(apex);
-    for (int k = 0; k < 3; ++k) // half as high: inside more cavities' visibility region
-      apex[k] = (a[k] + b[k] + c[k]) / 3 - nrm[k] / nn * le * 0.5 * std::sqrt(2.0 / 3.0);
-    candidates.push_back(apex);
+    if (ctx.options.measure == QualityMeasure::MinDihedral)
+    {
+      // Half as high too: seen from more of the cavities grown from a tet on the surface.
+      // For the dihedral stage only (in the Q stage they end at a lower Q min on the test
+      // grids).
+      for (int k = 0; k < 3; ++k)
+        apex[k] = (a[k] + b[k] + c[k]) / 3 - nrm[k] / nn * le * 0.5 * std::sqrt(2.0 / 3.0);
+      candidates.push_back(apex);
+    }
   }
 
   double h = 0;
