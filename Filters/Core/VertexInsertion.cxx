@@ -184,8 +184,8 @@ void polishPosition(Context& ctx,
   static const double kDirs[6][3] = {
     { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 }, { 0, 0, 1 }, { 0, 0, -1 }
   };
-  const double minStep = 0.01 * step;
-  for (int it = 0; it < 48 && step > minStep; ++it)
+  const double minStep = 0.03 * step;
+  for (int it = 0; it < 20 && step > minStep; ++it)
   {
     const std::array<double, 3> from = { p[0], p[1], p[2] };
     std::array<double, 3> bestPos = from;
