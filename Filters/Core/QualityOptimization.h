@@ -69,10 +69,11 @@ struct OptimizationOptions
   int maxMultiFace = 8;   // most faces one multi-face removal takes out (1: 2-3 flips only)
   int smoothingSteps = 8; // gradient-ascent steps per vertex after the barycentre
   // With PaperQ: when > 0 (degrees), a second stage follows, driven by the smallest dihedral
-  // angle (target dihedralTarget, i.e. qualityTarget = dihedralTarget / 70.53), with the
-  // minimum Q reached by the first stage guarded. Counters add up over both stages. On by
-  // default; 25 rather than 20 so that the stage works past 20 degrees, which is what gets
-  // the tets it cannot lift as far (mostly on coarse boundary triangles) to 20.
+  // angle, with the minimum Q reached by the first stage guarded. It works on the tets below
+  // 1.2 x dihedralTarget (qualityTarget = 1.2 * dihedralTarget / 70.53): working past the
+  // target is what gets the tets it cannot lift as far (mostly on coarse boundary triangles)
+  // to it. Counters add up over both stages. On by default; 25 (worked to 30) rather than 20
+  // for the same reason.
   double dihedralTarget = 25;
 };
 

@@ -15,8 +15,14 @@ namespace optimization
 namespace
 {
 
-// Grows the cavity from t for the vertex xv (already placed); keeps the best acceptable one.
-bool growCavity(Context& ctx, TetId t, VertexId xv, int maxCavity, LocalMove& out)
+// Grows the cavity from t for the vertex xv (already placed); keeps the best acceptable one
+// in `out`, and in `valid` (when given) the best one whose cone is valid, acceptable or not.
+bool growCavity(Context& ctx,
+  TetId t,
+  VertexId xv,
+  int maxCavity,
+  LocalMove& out,
+  LocalMove* validOut = nullptr)
 {
   TetMesh& m = ctx.mesh;
   std::vector<TetId> cavity = { t };
@@ -68,7 +74,11 @@ bool growCavity(Context& ctx, TetId t, VertexId xv, int maxCavity, LocalMove& ou
     newTets.clear();
     WorstOf newMin;
     bool valid = true;
-    std::size_t worst = 0;
+    bool doomed = false;
+    // The cavity grows across the face of the worst new tet that it may cross: a worst tet
+    // on a constrained face (a surface triangle) would stop it at the first tet, where the
+    // cone splits that tet and cannot be better (tets on the surface are the usual worst).
+    std::size_t worst = faces.size();
     double worstScore = kInf;
     edges.clear();
     for (std::size_t i = 0; i < faces.size(); ++i)
@@ -94,8 +104,13 @@ bool growCavity(Context& ctx, TetId t, VertexId xv, int maxCavity, LocalMove& ou
         sc = cand.eval.score;
       }
       else
+      {
         valid = false;
-      if (sc < worstScore)
+        // On a face the cavity never crosses, it stays in every larger cavity's cone.
+        if (m.neighbor(c, f) == kNoNeighbor || m.isConstrained(c, f))
+          doomed = true;
+      }
+      if (sc < worstScore && m.neighbor(c, f) != kNoNeighbor && !m.isConstrained(c, f))
       {
         worstScore = sc;
         worst = i;
@@ -109,6 +124,13 @@ bool growCavity(Context& ctx, TetId t, VertexId xv, int maxCavity, LocalMove& ou
       for (std::size_t i = 0; i < edges.size() && valid; i += 2)
         valid = i + 1 < edges.size() && edges[i] == edges[i + 1] &&
           (i + 2 >= edges.size() || edges[i + 2] != edges[i]);
+    }
+    if (valid && validOut && (validOut->oldTets.empty() || newMin.score > validOut->newMin.score))
+    {
+      validOut->oldTets = cavity;
+      validOut->newTets = newTets;
+      validOut->newMin = newMin;
+      validOut->kind = 3;
     }
     if (valid)
     {
@@ -124,13 +146,65 @@ bool growCavity(Context& ctx, TetId t, VertexId xv, int maxCavity, LocalMove& ou
         out.kind = 3;
       }
     }
-    const auto [c, f] = faces[worst];
-    FaceRef n = m.neighbor(c, f);
-    if (n == kNoNeighbor || m.isConstrained(c, f))
+    if (worst == faces.size() || doomed)
       break;
-    cavity.push_back(faceTet(n));
+    cavity.push_back(faceTet(m.neighbor(faces[worst].first, faces[worst].second)));
   }
   return found;
+}
+
+// Moves xv (compass search, from `step` down to a hundredth of it) to maximise the worst
+// score of the cone of `cone` (tets whose fourth vertex is xv), keeping every cone tet
+// positive (exact) and preferring positions where the guarded measures stay above the
+// floors of the acceptance rule against `old`. The candidate positions of insertion are
+// rarely the best for the cone the cavity ends with (on a tet spanning two surface
+// triangles, none of them is acceptable); this finds one that is.
+void polishPosition(Context& ctx,
+  VertexId xv,
+  const std::vector<TetVertices>& cone,
+  const WorstOf& old,
+  double step)
+{
+  const double qFloor = std::min(old.q, ctx.floorQ);
+  const double dihFloor = std::min(old.dih, ctx.floorDih);
+  auto objective = [&]()
+  {
+    WorstOf w;
+    for (const TetVertices& nt : cone)
+    {
+      if (!ctx.positive(nt[0], nt[1], nt[2], nt[3]))
+        return -kInf;
+      w.add(ctx.eval(nt));
+    }
+    // Guarded measures below their floor: worse than any position that keeps them.
+    return w.q >= qFloor && w.dih >= dihFloor ? w.score : w.score - 2;
+  };
+  double* p = &ctx.mesh.coords[3 * static_cast<std::size_t>(xv)];
+  double best = objective();
+  static const double kDirs[6][3] = {
+    { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 }, { 0, 0, 1 }, { 0, 0, -1 }
+  };
+  const double minStep = 0.03 * step;
+  for (int it = 0; it < 20 && step > minStep; ++it)
+  {
+    const std::array<double, 3> from = { p[0], p[1], p[2] };
+    std::array<double, 3> bestPos = from;
+    for (const auto& d : kDirs)
+    {
+      for (int k = 0; k < 3; ++k)
+        p[k] = from[k] + step * d[k];
+      const double v = objective();
+      if (v > best)
+      {
+        best = v;
+        bestPos = { p[0], p[1], p[2] };
+      }
+    }
+    for (int k = 0; k < 3; ++k)
+      p[k] = bestPos[k];
+    if (bestPos == from)
+      step *= 0.5;
+  }
 }
 
 } // namespace
@@ -171,6 +245,15 @@ bool findVertexInsertion(Context& ctx, TetId t, LocalMove& out, int maxCavity)
     for (int k = 0; k < 3; ++k) // the outward normal points away from the tet: go against it
       apex[k] = (a[k] + b[k] + c[k]) / 3 - nrm[k] / nn * le * std::sqrt(2.0 / 3.0);
     candidates.push_back(apex);
+    if (ctx.options.measure == QualityMeasure::MinDihedral)
+    {
+      // Half as high too: seen from more of the cavities grown from a tet on the surface.
+      // For the dihedral stage only (in the Q stage they end at a lower Q min on the test
+      // grids).
+      for (int k = 0; k < 3; ++k)
+        apex[k] = (a[k] + b[k] + c[k]) / 3 - nrm[k] / nn * le * 0.5 * std::sqrt(2.0 / 3.0);
+      candidates.push_back(apex);
+    }
   }
 
   double h = 0;
@@ -185,18 +268,67 @@ bool findVertexInsertion(Context& ctx, TetId t, LocalMove& out, int maxCavity)
   }
   bool found = false;
   std::array<double, 3> best = centroid;
-  LocalMove cand;
+  LocalMove cand, valid, bestValid;
+  std::array<double, 3> bestValidPos = centroid;
+  double* p = &m.coords[3 * static_cast<std::size_t>(xv)];
   for (const auto& x : candidates)
   {
-    double* p = &m.coords[3 * static_cast<std::size_t>(xv)];
     p[0] = x[0];
     p[1] = x[1];
     p[2] = x[2];
-    if (growCavity(ctx, t, xv, maxCavity, cand) && (!found || cand.newMin.score > out.newMin.score))
+    valid.oldTets.clear();
+    if (growCavity(ctx, t, xv, maxCavity, cand, &valid) &&
+      (!found || cand.newMin.score > out.newMin.score))
     {
       found = true;
       out = cand;
       best = x;
+    }
+    if (!valid.oldTets.empty() &&
+      (bestValid.oldTets.empty() || valid.newMin.score > bestValid.newMin.score))
+    {
+      bestValid = valid;
+      bestValidPos = x;
+    }
+  }
+  if (!found && !bestValid.oldTets.empty())
+  {
+    // None acceptable as placed: move the vertex within the best valid cavity, then judge
+    // that cavity and the one grown anew from the moved vertex.
+    p[0] = bestValidPos[0];
+    p[1] = bestValidPos[1];
+    p[2] = bestValidPos[2];
+    WorstOf oldMin;
+    for (TetId c : bestValid.oldTets)
+      oldMin.add(ctx.quality(c));
+    double le = 0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+      {
+        const double* a = m.point(m.vertex(t, i));
+        const double* b = m.point(m.vertex(t, j));
+        le += std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                (a[2] - b[2]) * (a[2] - b[2])) /
+          6;
+      }
+    polishPosition(ctx, xv, bestValid.newTets, oldMin, 0.25 * le);
+    const std::array<double, 3> polished = { p[0], p[1], p[2] };
+    WorstOf newMin;
+    bool positive = true;
+    for (const TetVertices& nt : bestValid.newTets)
+      ctx.scoreCandidate(nt, newMin, positive);
+    if (positive && ctx.accept(newMin, oldMin))
+    {
+      found = true;
+      out = bestValid;
+      out.newMin = newMin;
+      best = polished;
+    }
+    if (growCavity(ctx, t, xv, maxCavity, cand) && (!found || cand.newMin.score > out.newMin.score))
+    {
+      found = true;
+      out = cand;
+      best = polished;
     }
   }
   if (!found)
@@ -206,7 +338,6 @@ bool findVertexInsertion(Context& ctx, TetId t, LocalMove& out, int maxCavity)
       ctx.sizeCopy.resize(static_cast<std::size_t>(xv));
     return false;
   }
-  double* p = &m.coords[3 * static_cast<std::size_t>(xv)];
   p[0] = best[0];
   p[1] = best[1];
   p[2] = best[2];

@@ -1,8 +1,12 @@
 // Vertex insertion for the quality optimiser (Klingner-Shewchuk 2007, simplified): a new
-// vertex at the centroid of a bad tet, connected to the boundary of a cavity that starts as
-// that tet and grows greedily across the face of the worst new tet (never across a
-// constrained face), keeping the best acceptable cavity: all cone tets positive (exact), so
-// the cavity is star-shaped from the new vertex, and Context::accept against the cavity.
+// vertex at the centroid of a bad tet or at the apex of the regular tet over one of its faces
+// (also at half that height in the dihedral stage), connected to the boundary of a cavity
+// that starts as that tet and grows greedily across the face of the worst new tet that it
+// may cross (never a constrained face), keeping the best acceptable cavity: all cone tets
+// positive (exact), so the cavity is star-shaped from the new vertex, and Context::accept
+// against the cavity. When no position gives an acceptable cavity, the vertex is moved
+// (compass search) to the best position for the best valid cavity found, which is then
+// judged, and grown again from there.
 #pragma once
 
 #include "OptimizationContext.h"
