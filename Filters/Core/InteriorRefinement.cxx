@@ -662,6 +662,16 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     faces = std::make_unique<FaceGrid>(mesh, radius * sorted[sorted.size() / 2], lo);
   }
 
+  auto lap = [last = std::chrono::steady_clock::now()]() mutable
+  {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last).count();
+    last = now;
+    return seconds;
+  };
+  result.setupSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
+
   std::unique_ptr<InsertionWorkspace, WorkspaceDeleter> workspace(createInsertionWorkspace());
   std::vector<Candidate> candidates;
   std::vector<TetId> star;
@@ -922,6 +932,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
         }
       }
     }
+    result.latticeCandidateSeconds = lap();
     // Insertion order: BRIO rounds (HilbertSort.h), not one Hilbert sweep. A sweep fills the
     // domain front by front, and a point on the front conflicts with every not yet refined tet
     // whose circumsphere reaches it: boundary-mesh tets span the domain, and where the surface
@@ -972,6 +983,8 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       }
     }
   }
+
+  result.latticeInsertSeconds = lap();
 
   // Split points found outside the domain, per edge. An edge that lies in the boundary (the
   // other diagonal of a planar boundary quad, under a flat tet) has its split point rounded
@@ -1059,6 +1072,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     if (insertedThisRound == 0 || result.budgetReached)
       break;
   }
+  result.splitSeconds = lap();
   if (progress && !progress(1.0))
     return finish(false, "refineInterior: aborted");
   return finish(true, "");
