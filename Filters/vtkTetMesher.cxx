@@ -589,8 +589,20 @@ int vtkTetMesher::RequestData(vtkInformation*,
   for (vtkIdType t = 0; t < tetCount; ++t)
   {
     const std::int32_t* tet = &result.tets[static_cast<std::size_t>(4 * t)];
+    // Faces with a vertex beyond the input points (most) are no input triangle: not hashed.
+    int beyond = -1, beyondCount = 0;
+    for (int i = 0; i < 4; ++i)
+      if (tet[i] >= pointCount)
+      {
+        beyond = i;
+        ++beyondCount;
+      }
+    if (beyondCount > 1)
+      continue;
     for (int f = 0; f < 4; ++f)
     {
+      if (beyondCount == 1 && f != beyond)
+        continue; // face f contains every vertex but f
       std::int32_t face[3];
       for (int k = 0, n = 0; k < 4; ++k)
       {
