@@ -882,6 +882,64 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
         }
       }
       const double* const corners[4] = { c[0], c[1], c[2], c[3] };
+      // The lattice positions of the tet's box are mostly outside the tet (boundary-mesh tets
+      // are long and thin): per row (i, j), only the z-range where the tet's barycentric
+      // coordinates can be >= -1e-9 is scanned, widened by a tolerance of 1e-6 and one position
+      // each way; every position scanned still takes the test below, so the points are the
+      // same. Off for flat tets (the coordinates' rounding grows as 1/volume) and with jitter
+      // (a jittered point leaves its row).
+      double extent = 0, scale = 0;
+      for (int k = 0; k < 3; ++k)
+      {
+        extent = std::max(extent, bmax[k] - bmin[k]);
+        scale = std::max({ scale, std::fabs(bmin[k]), std::fabs(bmax[k]) });
+      }
+      const double u[3] = { c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2] };
+      const double v[3] = { c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2] };
+      const double w[3] = { c[3][0] - c[0][0], c[3][1] - c[0][1], c[3][2] - c[0][2] };
+      const double volume6 = std::fabs(u[0] * (v[1] * w[2] - v[2] * w[1]) -
+        u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]));
+      // The coordinates' rounding, ~1e-14 (scale + extent) extent^2 / volume6, stays below
+      // 1e-8, far within the tolerance.
+      const bool pruneRows = jitter == 0 && std::isfinite(volume6) &&
+        volume6 > 1e-6 * (scale + extent) * extent * extent;
+      auto rowRange = [&](std::int64_t i,
+                        std::int64_t j,
+                        double shift,
+                        double a,
+                        std::int64_t from,
+                        std::int64_t to,
+                        std::int64_t& rowFirst,
+                        std::int64_t& rowLast)
+      {
+        constexpr double kTolerance = 1e-6;
+        const double x = lo[0] + (i + shift) * a, y = lo[1] + (j + shift) * a;
+        const double p0[3] = { x, y, lo[2] + (from + shift) * a };
+        const double p1[3] = { x, y, lo[2] + (to + shift) * a };
+        double b0[4], b1[4];
+        if (!barycentricCoordinates(p0, corners, b0) || !barycentricCoordinates(p1, corners, b1))
+          return true; // scan the whole row
+        // b_k is affine along the row: b_k(u) = b0 + u (b1 - b0), u in [0, 1] from `from` to `to`.
+        double u0 = 0, u1 = 1;
+        for (int k = 0; k < 4; ++k)
+        {
+          if (!std::isfinite(b0[k]) || !std::isfinite(b1[k]))
+            return true;
+          const double slope = b1[k] - b0[k];
+          if (slope > 0)
+            u0 = std::max(u0, (-kTolerance - b0[k]) / slope);
+          else if (slope < 0)
+            u1 = std::min(u1, (-kTolerance - b0[k]) / slope);
+          else if (b0[k] < -kTolerance)
+            return false;
+        }
+        if (!(u0 <= u1))
+          return false;
+        const double span = static_cast<double>(to - from);
+        rowFirst = std::max(from, from + static_cast<std::int64_t>(std::floor(u0 * span)) - 1);
+        rowLast = std::min(to, from + static_cast<std::int64_t>(std::ceil(u1 * span)) + 1);
+        return true;
+      };
       const int levelLo = background ? 0 : levelOfSize(hlo);
       const int levelHi = background ? 0 : levelOfSize(hhi);
       for (int level = levelLo; level <= levelHi; ++level)
@@ -914,7 +972,11 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
             break;
           for (std::int64_t i = first[0]; i <= last[0]; ++i)
             for (std::int64_t j = first[1]; j <= last[1]; ++j)
-              for (std::int64_t k = first[2]; k <= last[2]; ++k)
+            {
+              std::int64_t kFirst = first[2], kLast = last[2];
+              if (pruneRows && !rowRange(i, j, shift, a, first[2], last[2], kFirst, kLast))
+                continue;
+              for (std::int64_t k = kFirst; k <= kLast; ++k)
               {
                 const std::uint64_t key = (static_cast<std::uint64_t>(level & 63) << 58) |
                   (static_cast<std::uint64_t>(sub) << 57) |
@@ -971,6 +1033,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
                   t,
                   { mesh.vertex(t, 0), mesh.vertex(t, 1), mesh.vertex(t, 2), mesh.vertex(t, 3) } });
               }
+            }
         }
       }
     }
