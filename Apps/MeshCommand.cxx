@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <unistd.h>
 
@@ -54,6 +55,9 @@ options:
   --dihedral-target D   then raise the smallest dihedral angles towards D degrees
                         (default 25; 0: no dihedral stage)
   --stats               print the quality summary of the result
+  --compress            zlib-compress the arrays of a .vtu (smaller, slower to write)
+  --timings             print the wall time of every stage (start-up, reading, the
+                        mesher's stages, writing)
   --holes               enclosed shells are holes instead of regions of their own
   --max-steiner N       budget of recovery Steiner points (default 100 + 4 per triangle)
   --time-limit S        stop with an error after S seconds (default: no limit)
@@ -82,6 +86,21 @@ public:
   }
 };
 
+// The sum of the first numbers of the lines "seconds<TAB>stage".
+double SumSeconds(const char* lines)
+{
+  double sum = 0;
+  for (const char* c = lines; *c;)
+  {
+    sum += std::strtod(c, nullptr);
+    const char* end = std::strchr(c, '\n');
+    if (!end)
+      break;
+    c = end + 1;
+  }
+  return sum;
+}
+
 double Field(vtkUnstructuredGrid* mesh, const char* name)
 {
   vtkDataArray* array = mesh->GetFieldData()->GetArray(name);
@@ -92,8 +111,9 @@ double Field(vtkUnstructuredGrid* mesh, const char* name)
 int RunMesh(int argc, char* argv[])
 {
   std::string input, output;
-  bool stats = false, holes = false, check = true, quiet = false, boundaryOnly = false,
-       optimize = true;
+  const auto processStart = std::chrono::steady_clock::now();
+  bool stats = false, timings = false, compress = false, holes = false, check = true, quiet = false,
+       boundaryOnly = false, optimize = true;
   int maxSteiner = -1, passes = 3;
   double timeLimit = 0, memoryLimit = 0, dihedralTarget = 25, size = 0, sizeScale = 1, minSize = 0,
          maxSize = 0, gradation = 1.5, qualityTarget = 0.35;
@@ -167,6 +187,10 @@ int RunMesh(int argc, char* argv[])
     }
     else if (arg == "--stats")
       stats = true;
+    else if (arg == "--timings")
+      timings = true;
+    else if (arg == "--compress")
+      compress = true;
     else if (arg == "--holes")
       holes = true;
     else if (arg == "--no-check")
@@ -218,7 +242,19 @@ int RunMesh(int argc, char* argv[])
   }
   try
   {
+    std::string timingLines;
+    auto lapStart = processStart;
+    auto lap = [&](const char* stage)
+    {
+      const auto now = std::chrono::steady_clock::now();
+      char text[64];
+      std::snprintf(
+        text, sizeof text, "%.4f\t", std::chrono::duration<double>(now - lapStart).count());
+      timingLines += text + std::string(stage) + "\n";
+      lapStart = now;
+    };
     vtkSmartPointer<vtkPolyData> surface = ReadSurface(input);
+    lap("reading");
     vtkNew<vtkTetMesher> mesher;
     if (size > 0)
     {
@@ -257,6 +293,7 @@ int RunMesh(int argc, char* argv[])
     vtkNew<ProgressBar> bar;
     if (!quiet && isatty(STDERR_FILENO))
       mesher->AddObserver(vtkCommand::ProgressEvent, bar);
+    lap("filter set-up");
     auto start = std::chrono::steady_clock::now();
     std::string error = RunFilter(mesher);
     double seconds =
@@ -267,7 +304,18 @@ int RunMesh(int argc, char* argv[])
       return 1;
     }
     vtkUnstructuredGrid* mesh = mesher->GetOutput();
-    WriteVolumeMesh(mesh, output);
+    {
+      timingLines += mesher->GetStageTimings();
+      char text[64];
+      std::snprintf(text,
+        sizeof text,
+        "%.4f\tpipeline overhead\n",
+        seconds - SumSeconds(mesher->GetStageTimings()));
+      timingLines += text;
+      lapStart = std::chrono::steady_clock::now();
+    }
+    WriteVolumeMesh(mesh, output, compress);
+    lap("writing");
     std::printf("%s -> %s: %lld tetrahedra, %lld points (%d interior, %d Steiner), %d region%s, "
                 "Q min %.3f mean %.3f, %.3f s\n",
       input.c_str(),
@@ -285,6 +333,46 @@ int RunMesh(int argc, char* argv[])
     {
       PrintQualityReport(stdout, output, mesh);
       PrintHistogram(stdout, mesher->GetHistogramOutput());
+    }
+    if (timings)
+    {
+      lap("summary and statistics");
+      // Time before main: the dynamic loader (VTK's libraries) and static initialisers.
+      double startup = -1;
+      if (FILE* stat = std::fopen("/proc/self/stat", "r"))
+      {
+        char buffer[1024];
+        const std::size_t n = std::fread(buffer, 1, sizeof buffer - 1, stat);
+        std::fclose(stat);
+        buffer[n] = '\0';
+        // Field 22 (starttime, clock ticks after boot) counts from after the ')' of field 2.
+        const char* c = std::strrchr(buffer, ')');
+        for (int field = 2; c && field < 22; ++field)
+          c = std::strchr(c + 1, ' ');
+        double uptime = 0;
+        FILE* up = std::fopen("/proc/uptime", "r");
+        if (c && up && std::fscanf(up, "%lf", &uptime) == 1)
+          startup = uptime -
+            std::strtod(c + 1, nullptr) / static_cast<double>(sysconf(_SC_CLK_TCK)) -
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - processStart).count();
+        if (up)
+          std::fclose(up);
+      }
+      const double total = SumSeconds(timingLines.c_str());
+      std::printf("timings (wall seconds per stage):\n");
+      if (startup >= 0)
+        std::printf("  %8.4f  process start-up before main (10 ms resolution)\n", startup);
+      for (const char* c = timingLines.c_str(); *c;)
+      {
+        const char* tab = std::strchr(c, '\t');
+        const char* end = std::strchr(c, '\n');
+        if (!tab || !end)
+          break;
+        std::printf(
+          "  %8.4f  %.*s\n", std::strtod(c, nullptr), static_cast<int>(end - tab - 1), tab + 1);
+        c = end + 1;
+      }
+      std::printf("  %8.4f  total after main\n", total);
     }
   }
   catch (const FileError& e)

@@ -1,19 +1,16 @@
 #include "MeshFiles.h"
 #include "Report.h"
 
+#include "vtkAbstractPolyDataReader.h"
 #include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
 #include "vtkCellType.h"
 #include "vtkCommand.h"
 #include "vtkDataSet.h"
 #include "vtkDataSetReader.h"
-#include "vtkGeometryFilter.h"
 #include "vtkNew.h"
-#include "vtkOBJReader.h"
-#include "vtkPLYReader.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkSTLReader.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkUnstructuredGridWriter.h"
 #include "vtkXMLGenericDataObjectReader.h"
@@ -21,6 +18,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <dlfcn.h>
 #include <fstream>
 #include <sstream>
 #include <sys/stat.h>
@@ -67,6 +65,22 @@ void RunReader(vtkAlgorithm* reader, const std::string& path)
   {
     Fail(path, "unreadable (" + error + ")");
   }
+}
+
+// A function of the reader module (SurfaceReaders.cxx), loaded on first use and kept loaded
+// (the objects it makes use its code).
+void* ReaderModuleSymbol(const std::string& path, const char* name)
+{
+  static void* module = dlopen("libtetmesherSurfaceReaders.so", RTLD_NOW | RTLD_LOCAL);
+  void* symbol = module ? dlsym(module, name) : nullptr;
+  if (!symbol)
+  {
+    const char* why = dlerror();
+    Fail(path,
+      std::string("cannot load the surface readers (libtetmesherSurfaceReaders.so: ") +
+        (why ? why : "missing symbol") + ")");
+  }
+  return symbol;
 }
 
 // A line-oriented tokenizer that skips '#' comments and knows the line number for errors.
@@ -471,24 +485,12 @@ vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path)
   {
     return ReadOff(path);
   }
-  if (ext == ".stl")
+  if (ext == ".stl" || ext == ".obj" || ext == ".ply")
   {
-    vtkNew<vtkSTLReader> reader;
-    reader->SetFileName(path.c_str());
-    reader->MergingOn();
-    RunReader(reader, path);
-    surface = reader->GetOutput();
-  }
-  else if (ext == ".obj")
-  {
-    vtkNew<vtkOBJReader> reader;
-    reader->SetFileName(path.c_str());
-    RunReader(reader, path);
-    surface = reader->GetOutput();
-  }
-  else if (ext == ".ply")
-  {
-    vtkNew<vtkPLYReader> reader;
+    using NewReader = vtkAbstractPolyDataReader* (*)(const char*);
+    auto newReader =
+      reinterpret_cast<NewReader>(ReaderModuleSymbol(path, "tetmesherNewSurfaceReader"));
+    auto reader = vtk::TakeSmartPointer(newReader(ext.c_str()));
     reader->SetFileName(path.c_str());
     RunReader(reader, path);
     surface = reader->GetOutput();
@@ -499,10 +501,10 @@ vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path)
     surface = vtkPolyData::SafeDownCast(data);
     if (!surface)
     {
-      vtkNew<vtkGeometryFilter> geometry; // e.g. a surface stored in a .vtu
-      geometry->SetInputData(data);
-      geometry->Update();
-      surface = geometry->GetOutput();
+      // e.g. a surface stored in a .vtu
+      using SurfaceOf = vtkPolyData* (*)(vtkDataSet*);
+      auto surfaceOf = reinterpret_cast<SurfaceOf>(ReaderModuleSymbol(path, "tetmesherSurfaceOf"));
+      surface = vtk::TakeSmartPointer(surfaceOf(data));
     }
   }
   else
@@ -512,7 +514,7 @@ vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path)
   return surface;
 }
 
-void WriteVolumeMesh(vtkUnstructuredGrid* mesh, const std::string& path)
+void WriteVolumeMesh(vtkUnstructuredGrid* mesh, const std::string& path, bool compress)
 {
   const std::string ext = LowerExtension(path);
   int ok = 0;
@@ -521,8 +523,14 @@ void WriteVolumeMesh(vtkUnstructuredGrid* mesh, const std::string& path)
     vtkNew<vtkXMLUnstructuredGridWriter> writer;
     writer->SetFileName(path.c_str());
     writer->SetInputData(mesh);
+    // Raw appended binary: zlib took 10% of a 160k-tet run's CPU time and base64 adds a third
+    // to the size and its encoding time.
     writer->SetDataModeToAppended();
-    writer->SetCompressorTypeToZLib();
+    writer->SetEncodeAppendedData(false);
+    if (compress)
+      writer->SetCompressorTypeToZLib();
+    else
+      writer->SetCompressorTypeToNone();
     ok = writer->Write();
   }
   else if (ext == ".vtk")

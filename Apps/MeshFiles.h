@@ -30,7 +30,8 @@ vtkSmartPointer<vtkDataSet> ReadVolumeMesh(const std::string& path);
 vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path);
 
 // Writes an unstructured grid (.vtu or legacy .vtk by extension). Throws FileError.
-void WriteVolumeMesh(vtkUnstructuredGrid* mesh, const std::string& path);
+// .vtu: raw appended binary, zlib-compressed when `compress`; .vtk: legacy binary.
+void WriteVolumeMesh(vtkUnstructuredGrid* mesh, const std::string& path, bool compress = false);
 
 std::string LowerExtension(const std::string& path);
 

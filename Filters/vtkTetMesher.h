@@ -244,6 +244,12 @@ public:
    */
   const char* GetLastError() { return this->LastError.c_str(); }
 
+  /**
+   * Wall time per stage of the last run, one line per stage "seconds<TAB>stage", in order
+   * (input conversion and check, the core stages, output conversion, quality arrays).
+   */
+  const char* GetStageTimings() { return this->StageTimings.c_str(); }
+
   vtkTable* GetHistogramOutput();
 
   /**
@@ -283,6 +289,7 @@ protected:
   bool TriangulatePolygons = true;
   int NumberOfBins = 20;
   std::string LastError;
+  std::string StageTimings;
 
 private:
   vtkTetMesher(const vtkTetMesher&) = delete;

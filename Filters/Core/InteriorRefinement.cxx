@@ -133,9 +133,12 @@ double pointTriangleDistance2(const double* p, const double* a, const double* b,
 }
 
 // Vertices bucketed by size class: class L holds sizes in [base 2^L, base 2^(L+1)) (class 0
-// also the smaller ones), in a hash grid whose cells are as large as the largest rejection
-// radius that a vertex of the class can be involved in, so a query looks at 3x3x3 cells per
-// class.
+// also the smaller ones), each class in a hash grid of cells 2 ratio base 2^L wide. A query
+// scans, per class, the cells within the largest distance at which a vertex of the class can
+// be rejected against it (from the largest size the class was given: sizes only ever go down
+// during refinement), so it looks at ~2-3 cells per axis and ~1 vertex per cell. (Cells as
+// wide as the largest radius of the class, 3x3x3 per query, made a query test ~250 vertices
+// through a linked list: 10% of a 160k-tet run.) The answer does not depend on the cell size.
 class ProximityGrid
 {
 public:
@@ -149,43 +152,57 @@ public:
 
   void insert(VertexId v, const double* p, double h)
   {
-    if (static_cast<std::size_t>(v) >= next_.size())
-      next_.resize(static_cast<std::size_t>(v) + 1, -1);
     const int level = levelOf(h);
     while (static_cast<int>(levels_.size()) <= level)
     {
       Level l;
-      l.cell = ratio_ * base_ * std::ldexp(1.0, static_cast<int>(levels_.size()) + 2);
+      l.cell = 2 * ratio_ * base_ * std::ldexp(1.0, static_cast<int>(levels_.size()));
       levels_.push_back(std::move(l));
     }
     Level& l = levels_[level];
-    const std::uint64_t key = cellKey(l, p, 0, 0, 0);
-    auto [it, fresh] = l.head.emplace(key, v);
-    next_[v] = fresh ? -1 : it->second;
-    it->second = v;
+    l.maxSize = std::max(l.maxSize, h);
+    const std::uint64_t key = cellKey(index(l, p[0], 0), index(l, p[1], 1), index(l, p[2], 2));
+    const auto node = static_cast<std::int32_t>(nodes_.size());
+    auto [it, fresh] = l.head.emplace(key, node);
+    nodes_.push_back({ { p[0], p[1], p[2] }, v, fresh ? -1 : it->second, level });
+    it->second = node;
   }
 
   // Is some vertex q with d(p,q) * (1/h + 1/h_q) / 2 < ratio?
-  bool hasNear(const double* p,
-    double h,
-    const std::vector<double>& coords,
-    const std::vector<double>& sizes) const
+  bool hasNear(const double* p, double h, const std::vector<double>& sizes) const
   {
     for (const Level& l : levels_)
     {
-      for (int i = -1; i <= 1; ++i)
-        for (int j = -1; j <= 1; ++j)
-          for (int k = -1; k <= 1; ++k)
+      // d < 2 ratio / (1/h + 1/h_q) <= radius, with slack for rounding.
+      const double radius = 2 * ratio_ / (1 / h + 1 / l.maxSize) * (1 + 1e-6);
+      std::int64_t c0[3], c1[3];
+      double cells = 1;
+      for (int a = 0; a < 3; ++a)
+      {
+        const double slack = 4 * std::numeric_limits<double>::epsilon() *
+          (std::fabs(p[a]) + std::fabs(origin_[a]) + radius);
+        c0[a] = index(l, p[a] - radius - slack, a);
+        c1[a] = index(l, p[a] + radius + slack, a);
+        cells *= static_cast<double>(c1[a] - c0[a] + 1);
+      }
+      if (!(cells <= 4096)) // a query far larger than the class (or NaN): scan the class
+      {
+        const std::int32_t level = static_cast<std::int32_t>(&l - levels_.data());
+        for (const Node& n : nodes_)
+          if (n.level == level && isNear(p, h, n, sizes))
+            return true;
+        continue;
+      }
+      for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
+        for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
+          for (std::int64_t k = c0[2]; k <= c1[2]; ++k)
           {
-            auto it = l.head.find(cellKey(l, p, i, j, k));
+            auto it = l.head.find(cellKey(i, j, k));
             if (it == l.head.end())
               continue;
-            for (VertexId q = it->second; q >= 0; q = next_[q])
-            {
-              const double d = distance(p, &coords[3 * static_cast<std::size_t>(q)]);
-              if (d * 0.5 * (1 / h + 1 / sizes[q]) < ratio_)
+            for (std::int32_t n = it->second; n >= 0; n = nodes_[n].next)
+              if (isNear(p, h, nodes_[n], sizes))
                 return true;
-            }
           }
     }
     return false;
@@ -195,8 +212,22 @@ private:
   struct Level
   {
     double cell = 0;
-    std::unordered_map<std::uint64_t, VertexId> head;
+    double maxSize = 0; // largest size given to a vertex of the class
+    std::unordered_map<std::uint64_t, std::int32_t> head;
   };
+  struct Node
+  {
+    double p[3];
+    VertexId vertex;
+    std::int32_t next; // the next node of the same cell, -1 at the end
+    std::int32_t level;
+  };
+
+  bool isNear(const double* p, double h, const Node& n, const std::vector<double>& sizes) const
+  {
+    const double d = distance(p, n.p);
+    return d * 0.5 * (1 / h + 1 / sizes[n.vertex]) < ratio_;
+  }
 
   int levelOf(double h) const
   {
@@ -205,25 +236,23 @@ private:
     return std::min(60, std::max(0, static_cast<int>(std::floor(std::log2(h / base_)))));
   }
 
-  std::uint64_t cellKey(const Level& l, const double* p, int di, int dj, int dk) const
+  std::int64_t index(const Level& l, double x, int a) const
   {
-    const int d[3] = { di, dj, dk };
-    std::uint64_t key = 0;
-    for (int a = 0; a < 3; ++a)
-    {
-      const double c = std::floor((p[a] - origin_[a]) / l.cell);
-      const std::int64_t ic =
-        static_cast<std::int64_t>(std::max(-1e6, std::min(1e6, c))) + d[a] + (1 << 20);
-      key = (key << 21) | (static_cast<std::uint64_t>(ic) & ((1u << 21) - 1));
-    }
-    return key;
+    const double c = std::floor((x - origin_[a]) / l.cell);
+    return static_cast<std::int64_t>(std::max(-1e6, std::min(1e6, c)));
+  }
+  static std::uint64_t cellKey(std::int64_t i, std::int64_t j, std::int64_t k)
+  {
+    auto part = [](std::int64_t x)
+    { return static_cast<std::uint64_t>(x + (1 << 20)) & ((1u << 21) - 1); };
+    return (part(i) << 42) | (part(j) << 21) | part(k);
   }
 
   double base_;
   double ratio_;
   double origin_[3];
   std::vector<Level> levels_;
-  std::vector<VertexId> next_;
+  std::vector<Node> nodes_;
 };
 
 // The constrained faces (boundary, interfaces) in a hash grid, for the distance from a
@@ -639,6 +668,19 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   const std::int64_t budget = static_cast<std::int64_t>(budgetDouble);
   if (initialCount == 0 || mesh.liveTetCount() == 0)
     return finish(true, "");
+  {
+    // Room for the estimated mesh up front (~6.5 tets per vertex): growing the arrays by
+    // copying took ~3% of the refinement. Bounded, as the estimate may be far off.
+    const double points = std::min(result.estimatedPoints, 3.0e7);
+    const auto tets = static_cast<std::size_t>(mesh.tetCapacity() + 6.5 * points);
+    const auto vertices = static_cast<std::size_t>(initialCount + points);
+    mesh.coords.reserve(3 * vertices);
+    mesh.tets.reserve(4 * tets);
+    mesh.neighbors.reserve(4 * tets);
+    mesh.flags.reserve(tets);
+    region.reserve(tets);
+    h.reserve(vertices);
+  }
 
   double minH = std::numeric_limits<double>::max();
   for (double value : h)
@@ -661,6 +703,16 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       0.1 });
     faces = std::make_unique<FaceGrid>(mesh, radius * sorted[sorted.size() / 2], lo);
   }
+
+  auto lap = [last = std::chrono::steady_clock::now()]() mutable
+  {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last).count();
+    last = now;
+    return seconds;
+  };
+  result.setupSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
 
   std::unique_ptr<InsertionWorkspace, WorkspaceDeleter> workspace(createInsertionWorkspace());
   std::vector<Candidate> candidates;
@@ -744,7 +796,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     [&](
       const double* p, TetId container, double hp, std::int32_t r, double boundaryDistance) -> TetId
   {
-    if (checkProximity && grid.hasNear(p, hp, mesh.coords, h))
+    if (checkProximity && grid.hasNear(p, hp, h))
     {
       ++result.rejectedNearVertex;
       return -1;
@@ -830,6 +882,64 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
         }
       }
       const double* const corners[4] = { c[0], c[1], c[2], c[3] };
+      // The lattice positions of the tet's box are mostly outside the tet (boundary-mesh tets
+      // are long and thin): per row (i, j), only the z-range where the tet's barycentric
+      // coordinates can be >= -1e-9 is scanned, widened by a tolerance of 1e-6 and one position
+      // each way; every position scanned still takes the test below, so the points are the
+      // same. Off for flat tets (the coordinates' rounding grows as 1/volume) and with jitter
+      // (a jittered point leaves its row).
+      double extent = 0, scale = 0;
+      for (int k = 0; k < 3; ++k)
+      {
+        extent = std::max(extent, bmax[k] - bmin[k]);
+        scale = std::max({ scale, std::fabs(bmin[k]), std::fabs(bmax[k]) });
+      }
+      const double u[3] = { c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2] };
+      const double v[3] = { c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2] };
+      const double w[3] = { c[3][0] - c[0][0], c[3][1] - c[0][1], c[3][2] - c[0][2] };
+      const double volume6 = std::fabs(u[0] * (v[1] * w[2] - v[2] * w[1]) -
+        u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]));
+      // The coordinates' rounding, ~1e-14 (scale + extent) extent^2 / volume6, stays below
+      // 1e-8, far within the tolerance.
+      const bool pruneRows = jitter == 0 && std::isfinite(volume6) &&
+        volume6 > 1e-6 * (scale + extent) * extent * extent;
+      auto rowRange = [&](std::int64_t i,
+                        std::int64_t j,
+                        double shift,
+                        double a,
+                        std::int64_t from,
+                        std::int64_t to,
+                        std::int64_t& rowFirst,
+                        std::int64_t& rowLast)
+      {
+        constexpr double kTolerance = 1e-6;
+        const double x = lo[0] + (i + shift) * a, y = lo[1] + (j + shift) * a;
+        const double p0[3] = { x, y, lo[2] + (from + shift) * a };
+        const double p1[3] = { x, y, lo[2] + (to + shift) * a };
+        double b0[4], b1[4];
+        if (!barycentricCoordinates(p0, corners, b0) || !barycentricCoordinates(p1, corners, b1))
+          return true; // scan the whole row
+        // b_k is affine along the row: b_k(u) = b0 + u (b1 - b0), u in [0, 1] from `from` to `to`.
+        double u0 = 0, u1 = 1;
+        for (int k = 0; k < 4; ++k)
+        {
+          if (!std::isfinite(b0[k]) || !std::isfinite(b1[k]))
+            return true;
+          const double slope = b1[k] - b0[k];
+          if (slope > 0)
+            u0 = std::max(u0, (-kTolerance - b0[k]) / slope);
+          else if (slope < 0)
+            u1 = std::min(u1, (-kTolerance - b0[k]) / slope);
+          else if (b0[k] < -kTolerance)
+            return false;
+        }
+        if (!(u0 <= u1))
+          return false;
+        const double span = static_cast<double>(to - from);
+        rowFirst = std::max(from, from + static_cast<std::int64_t>(std::floor(u0 * span)) - 1);
+        rowLast = std::min(to, from + static_cast<std::int64_t>(std::ceil(u1 * span)) + 1);
+        return true;
+      };
       const int levelLo = background ? 0 : levelOfSize(hlo);
       const int levelHi = background ? 0 : levelOfSize(hhi);
       for (int level = levelLo; level <= levelHi; ++level)
@@ -862,7 +972,11 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
             break;
           for (std::int64_t i = first[0]; i <= last[0]; ++i)
             for (std::int64_t j = first[1]; j <= last[1]; ++j)
-              for (std::int64_t k = first[2]; k <= last[2]; ++k)
+            {
+              std::int64_t kFirst = first[2], kLast = last[2];
+              if (pruneRows && !rowRange(i, j, shift, a, first[2], last[2], kFirst, kLast))
+                continue;
+              for (std::int64_t k = kFirst; k <= kLast; ++k)
               {
                 const std::uint64_t key = (static_cast<std::uint64_t>(level & 63) << 58) |
                   (static_cast<std::uint64_t>(sub) << 57) |
@@ -919,9 +1033,11 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
                   t,
                   { mesh.vertex(t, 0), mesh.vertex(t, 1), mesh.vertex(t, 2), mesh.vertex(t, 3) } });
               }
+            }
         }
       }
     }
+    result.latticeCandidateSeconds = lap();
     // Insertion order: BRIO rounds (HilbertSort.h), not one Hilbert sweep. A sweep fills the
     // domain front by front, and a point on the front conflicts with every not yet refined tet
     // whose circumsphere reaches it: boundary-mesh tets span the domain, and where the surface
@@ -972,6 +1088,8 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       }
     }
   }
+
+  result.latticeInsertSeconds = lap();
 
   // Split points found outside the domain, per edge. An edge that lies in the boundary (the
   // other diagonal of a planar boundary quad, under a flat tet) has its split point rounded
@@ -1059,6 +1177,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     if (insertedThisRound == 0 || result.budgetReached)
       break;
   }
+  result.splitSeconds = lap();
   if (progress && !progress(1.0))
     return finish(false, "refineInterior: aborted");
   return finish(true, "");

@@ -70,6 +70,12 @@ struct RefinementResult
   int rejectedByKernel = 0;     // ... refused by insertVertex (on a constraint, duplicate)
   int latticePoints = 0;        // inserted points that came from the lattice prefill
   double estimatedPoints = 0;   // integral of sqrt(2)/h^3 over the initial mesh (see .cxx)
+  // Wall time of the parts: sizes, estimate and search grids; lattice candidates; lattice
+  // insertion; edge-splitting rounds.
+  double setupSeconds = 0;
+  double latticeCandidateSeconds = 0;
+  double latticeInsertSeconds = 0;
+  double splitSeconds = 0;
 };
 
 // Inserts interior points into `mesh` until no interior edge (an edge of no constrained face;

@@ -99,17 +99,33 @@ std::vector<std::int32_t> findTriangleFaces(const std::vector<std::int32_t>& tet
 {
   std::unordered_map<std::array<VertexId, 3>, std::int32_t, FaceKeyHash> index;
   index.reserve(static_cast<std::size_t>(triangleCount));
+  VertexId maxVertex = -1;
   for (std::int32_t i = 0; i < triangleCount; ++i)
   {
     std::array<VertexId, 3> key{ triangles[3 * i], triangles[3 * i + 1], triangles[3 * i + 2] };
     std::sort(key.begin(), key.end());
+    maxVertex = std::max(maxVertex, key[2]);
     index.emplace(key, i);
   }
   std::vector<std::int32_t> faces(static_cast<std::size_t>(triangleCount), -1);
   for (std::size_t t = 0; t < tets.size() / 4; ++t)
   {
+    // Most tets have an interior vertex (ids above every triangle's): skip the hashing of the
+    // faces that contain it.
+    const std::int32_t* tet = &tets[4 * t];
+    int beyond = -1, beyondCount = 0;
+    for (int i = 0; i < 4; ++i)
+      if (tet[i] > maxVertex)
+      {
+        beyond = i;
+        ++beyondCount;
+      }
+    if (beyondCount > 1)
+      continue;
     for (int f = 0; f < 4; ++f)
     {
+      if (beyondCount == 1 && f != beyond)
+        continue; // face f contains every vertex but f
       const std::array<VertexId, 3> key = sortedFace(tets, t, f);
       auto found = index.find(key);
       if (found != index.end() && faces[static_cast<std::size_t>(found->second)] < 0)

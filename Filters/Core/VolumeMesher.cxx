@@ -31,6 +31,13 @@ VolumeMeshResult meshVolume(const double* points,
 {
   const auto start = std::chrono::steady_clock::now();
   VolumeMeshResult result;
+  auto lapStart = start;
+  auto lap = [&](const char* stage)
+  {
+    const auto now = std::chrono::steady_clock::now();
+    result.stageSeconds.emplace_back(stage, std::chrono::duration<double>(now - lapStart).count());
+    lapStart = now;
+  };
   const bool later = options.refine || options.optimize;
   const double boundaryShare = later ? 0.4 : 1.0;
   const double refineEnd = options.optimize ? 0.75 : 1.0;
@@ -43,6 +50,17 @@ VolumeMeshResult meshVolume(const double* points,
     subProgress(progress, 0.0, boundaryShare));
   result.steinerPoints = boundary.steinerPoints;
   result.regionCount = boundary.regionCount;
+  {
+    const double total =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - lapStart).count();
+    const double parts =
+      boundary.delaunaySeconds + boundary.recoverySeconds + boundary.regionsSeconds;
+    result.stageSeconds = { { "surface input and checks", std::max(0.0, total - parts) },
+      { "Delaunay of the surface points", boundary.delaunaySeconds },
+      { "boundary recovery", boundary.recoverySeconds },
+      { "regions and compaction", boundary.regionsSeconds } };
+    lapStart = std::chrono::steady_clock::now();
+  }
   if (!boundary.ok)
   {
     result.error = boundary.error;
@@ -68,6 +86,7 @@ VolumeMeshResult meshVolume(const double* points,
     result.error = "internal error: the boundary mesh has a face shared by more than two tets";
     return result;
   }
+  lap("mesh assembly");
   // Size field at the input points: given, else the mean boundary edge length there.
   std::vector<double> size = boundaryEdgeSizes(points, pointCount, triangles, triangleCount);
   for (std::size_t i = 0; i < options.inputSizes.size() && i < size.size(); ++i)
@@ -88,10 +107,22 @@ VolumeMeshResult meshVolume(const double* points,
       return result;
     }
     result.interiorPoints = result.refinementStats.insertedPoints;
+    const RefinementResult& r = result.refinementStats;
+    lap("refinement");
+    // Split the refinement lap into its parts (the rest is the boundary edge sizes).
+    const double refinementLap = result.stageSeconds.back().second;
+    result.stageSeconds.back() = { "size field and refinement setup",
+      std::max(
+        0.0, refinementLap - r.latticeCandidateSeconds - r.latticeInsertSeconds - r.splitSeconds) };
+    result.stageSeconds.insert(result.stageSeconds.end(),
+      { { "lattice candidates", r.latticeCandidateSeconds },
+        { "lattice insertion", r.latticeInsertSeconds },
+        { "edge splitting", r.splitSeconds } });
   }
   std::vector<double> unusedPoints;
   std::vector<std::int32_t> unusedRegions;
   extractRegionMesh(mesh, unusedPoints, result.tetsBeforeOptimization, unusedRegions);
+  lap("extraction before optimisation");
   if (options.optimize)
   {
     // Quality in units of h only when a size field was computed by refinement.
@@ -130,6 +161,7 @@ VolumeMeshResult meshVolume(const double* points,
       result.error = "quality optimisation failed: " + result.optimizationStats.error;
       return result;
     }
+    lap("optimisation");
   }
   extractRegionMesh(mesh, result.points, result.tets, result.regionIds);
   if (options.refine)
@@ -159,6 +191,7 @@ VolumeMeshResult meshVolume(const double* points,
     result.vertexSize = std::move(size);
   }
   result.boundaryFaceTet = findTriangleFaces(result.tets, triangles, triangleCount);
+  lap("extraction and boundary faces");
   result.boundaryStats = std::move(boundary);
   result.ok = true;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

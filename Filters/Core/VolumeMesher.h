@@ -12,10 +12,15 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace tetmesher
 {
+
+// Wall time per stage, in the order the stages ran (name, seconds): cheap (a clock read per
+// stage), for `tetmesher mesh --timings` and for profiling.
+using StageTimes = std::vector<std::pair<std::string, double>>;
 
 struct VolumeMeshOptions
 {
@@ -54,6 +59,7 @@ struct VolumeMeshResult
   OptimizationResult optimizationStats;
   bool optimizationStoppedByTime = false;
   double seconds = 0;
+  StageTimes stageSeconds;
 };
 
 VolumeMeshResult meshVolume(const double* points,

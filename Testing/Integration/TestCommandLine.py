@@ -112,6 +112,18 @@ with tempfile.TemporaryDirectory() as tmp:
            out_has=["(0 interior, 0 Steiner)"])
     expect(["mesh", os.path.join(corpus, "cube.vtp"), "-o", out, "-q", "--size", "0.2", "--stats"], 0,
            out_has=["histogram of Q"])
+    # .stl goes through the reader module loaded on demand (libtetmesherSurfaceReaders.so).
+    expect(["mesh", os.path.join(corpus, "sphere.stl"), "-o", out, "-q", "--boundary-only"], 0,
+           out_has=["(0 interior, 0 Steiner)"])
+    # --timings lists every stage; --compress writes a smaller file of the same mesh.
+    expect(["mesh", os.path.join(corpus, "sphere.off"), "-o", out, "-q", "--timings"], 0,
+           out_has=["timings (wall seconds per stage)", "reading", "boundary recovery",
+                    "lattice insertion", "edge splitting", "optimisation", "writing",
+                    "total after main"])
+    size_raw = os.path.getsize(out)
+    expect(["mesh", os.path.join(corpus, "sphere.off"), "-o", out, "-q", "--compress"], 0)
+    if not os.path.getsize(out) < size_raw:
+        failures.append(f"--compress: {os.path.getsize(out)} bytes, not fewer than {size_raw}")
     expect(["mesh", os.path.join(corpus, "nested_spheres.vtp"), "-o", out, "-q", "--holes"], 0,
            out_has=["1 region"])
     expect(["mesh", os.path.join(corpus, "turbine.off"), "-o", out, "-q", "--time-limit", "0.05"], 1,
