@@ -69,6 +69,7 @@ struct InsertionWorkspace
 
   std::vector<TetId> cavity;
   std::vector<TetId> rejected;
+  std::vector<TetId> cone; // fast mode: the new tet of each boundary face
   std::vector<BoundaryFace> boundary;
   std::vector<EdgeSlot> edgeTable = std::vector<EdgeSlot>(512, EdgeSlot{ 0, -1, -1, 0 });
   std::uint32_t edgeStamp = 0;
@@ -491,6 +492,14 @@ inline std::size_t edgeHash(VertexId a, VertexId b, std::size_t mask)
   return static_cast<std::size_t>(h >> 40) & mask;
 }
 
+// Directed: the two directions of an edge land in different slots (two-pass gluing).
+inline std::size_t directedEdgeHash(VertexId from, VertexId to, std::size_t mask)
+{
+  const std::uint64_t h = (static_cast<std::uint32_t>(from) * 0x9E3779B97F4A7C15ULL) ^
+    (static_cast<std::uint32_t>(to) * 0xC2B2AE3D27D4EB4FULL);
+  return static_cast<std::size_t>(h >> 40) & mask;
+}
+
 // Replaces the cavity by the cone from v over ws.boundary. Returns one of the new tets.
 // Fast mode leaves mesh.flags alone: no tet of an unconstrained build has a flag set.
 template<bool Checked>
@@ -525,6 +534,8 @@ TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
     mesh.flags.reserve(grown);
   }
 
+  if (!Checked && ws.cone.size() < faceCount)
+    ws.cone.resize(2 * faceCount);
   // Face of the new tet (a,b,c,v) that contains edge (from,to) of the boundary triangle.
   constexpr int kEdgeFace[3] = { 2, 0, 1 }; // edges ab, bc, ca
   TetId lastTet = -1;
@@ -552,6 +563,23 @@ TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
       mesh.neighbors[static_cast<std::size_t>(bf.outside)] = makeFaceRef(t, 3);
     if (Checked && bf.constrained)
       mesh.flags[t] = static_cast<std::uint8_t>(kConstrainedFace0 << 3);
+    lastTet = t;
+    if (!Checked)
+    {
+      // Every directed edge occurs exactly once on an unconstrained cavity's boundary, so
+      // all are stored first and looked up second: no "first or second visit" branch, which
+      // is a coin flip per edge and mispredicted half the time.
+      ws.cone[i] = t;
+      for (int e = 0; e < 3; ++e)
+      {
+        const VertexId from = bf.v[e], to = bf.v[(e + 1) % 3];
+        std::size_t slot = directedEdgeHash(from, to, mask);
+        while (ws.edgeTable[slot].stamp == stamp)
+          slot = (slot + 1) & mask;
+        ws.edgeTable[slot] = { stamp, from, to, makeFaceRef(t, kEdgeFace[e]) };
+      }
+      continue;
+    }
     for (int e = 0; e < 3; ++e)
     {
       const VertexId from = bf.v[e], to = bf.v[(e + 1) % 3];
@@ -576,8 +604,27 @@ TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
         slot = (slot + 1) & mask;
       }
     }
-    lastTet = t;
   }
+  if (!Checked)
+    for (std::size_t i = 0; i < faceCount; ++i)
+    {
+      const InsertionWorkspace::BoundaryFace& bf = ws.boundary[i];
+      const std::size_t base = 4 * static_cast<std::size_t>(ws.cone[i]);
+      for (int e = 0; e < 3; ++e)
+      {
+        // The neighbouring cone tet holds the same edge in the opposite direction.
+        const VertexId from = bf.v[(e + 1) % 3], to = bf.v[e];
+        std::size_t slot = directedEdgeHash(from, to, mask);
+        for (;;)
+        {
+          const InsertionWorkspace::EdgeSlot& s = ws.edgeTable[slot];
+          if (s.from == from && s.to == to && s.stamp == stamp)
+            break;
+          slot = (slot + 1) & mask;
+        }
+        mesh.neighbors[base + kEdgeFace[e]] = ws.edgeTable[slot].face;
+      }
+    }
   // Cavity slots not reused (only possible in degenerate checked-mode cavities).
   for (std::size_t i = reused; i < ws.cavity.size(); ++i)
   {
