@@ -73,17 +73,6 @@ struct InsertionWorkspace
   std::vector<BoundaryFace> boundary;
   std::vector<EdgeSlot> edgeTable = std::vector<EdgeSlot>(512, EdgeSlot{ 0, -1, -1, 0 });
   std::uint32_t edgeStamp = 0;
-  // Fast mode's set of the tets tested for this insertion (open addressing, stamped slots so
-  // that it never needs clearing): it stays in cache, where per-tet flags would cost a miss
-  // per tested tet.
-  struct VisitSlot
-  {
-    std::uint32_t stamp;
-    TetId tet;
-    bool inCavity;
-  };
-  std::vector<VisitSlot> visited = std::vector<VisitSlot>(1024, VisitSlot{ 0, -1, false });
-  std::uint32_t visitStamp = 0;
   std::vector<std::uint32_t> vertexStamp; // checked mode only
   std::uint32_t stamp = 0;
   std::uint64_t rng = kWalkSeed;
@@ -330,65 +319,40 @@ void collectBoundary(TetMesh& mesh, InsertionWorkspace& ws)
   }
 }
 
-inline std::size_t visitHash(TetId t, std::size_t mask)
+// Fast mode's marks live in the sign bits of a tet's own vertex ids (ids are non-negative):
+// the tet's vertices are loaded anyway to test it, so the mark costs no extra cache miss,
+// where mesh.flags or a side table would. Bit 31 of vertex 3: tested; of vertex 2: in the
+// cavity. Cavity tets are overwritten by fillCavity, rejected ones unmarked after the search.
+constexpr std::uint32_t kMarkBit = 0x80000000u;
+
+inline bool hasMark(const VertexId* tv, int k)
 {
-  return static_cast<std::size_t>(
-           (static_cast<std::uint64_t>(static_cast<std::uint32_t>(t)) * 0x9E3779B97F4A7C15ULL) >>
-           40) &
-    mask;
+  return (static_cast<std::uint32_t>(tv[k]) & kMarkBit) != 0;
 }
 
-// Starts a new visited set able to hold `capacity` tets at load factor <= 1/2.
-void resetVisited(InsertionWorkspace& ws, std::size_t capacity)
+inline void setMark(VertexId* tv, int k)
 {
-  if (ws.visited.size() < 2 * capacity)
-  {
-    std::size_t size = ws.visited.size();
-    while (size < 2 * capacity)
-      size *= 2;
-    ws.visited.assign(size, InsertionWorkspace::VisitSlot{ 0, -1, false });
-    ws.visitStamp = 0;
-  }
-  if (++ws.visitStamp == 0)
-  {
-    for (auto& slot : ws.visited)
-      slot.stamp = 0;
-    ws.visitStamp = 1;
-  }
+  tv[k] = static_cast<VertexId>(static_cast<std::uint32_t>(tv[k]) | kMarkBit);
 }
 
-// The slot of t in the visited set; `fresh` tells whether t was inserted just now.
-inline InsertionWorkspace::VisitSlot& visit(InsertionWorkspace& ws, TetId t, bool& fresh)
+inline VertexId unmarked(VertexId v)
 {
-  const std::size_t mask = ws.visited.size() - 1;
-  for (std::size_t slot = visitHash(t, mask);; slot = (slot + 1) & mask)
-  {
-    InsertionWorkspace::VisitSlot& s = ws.visited[slot];
-    fresh = s.stamp != ws.visitStamp;
-    if (fresh)
-    {
-      s = { ws.visitStamp, t, false };
-      return s;
-    }
-    if (s.tet == t)
-      return s;
-  }
+  return static_cast<VertexId>(static_cast<std::uint32_t>(v) & ~kMarkBit);
 }
 
 // Fast mode (buildDelaunay only): the mesh has no constrained faces, so mesh.flags is never
-// read; tested tets go to the workspace's visited set. The boundary is recorded on the fly.
-// Same breadth-first order as the checked version, hence the same tet ids.
+// read. The boundary is recorded on the fly. Same breadth-first order as the checked version,
+// hence the same tet ids.
 void growCavityFast(TetMesh& mesh, VertexId v, TetId start, InsertionWorkspace& ws)
 {
   const double* coords = mesh.coords.data();
   const FaceRef* neighbors = mesh.neighbors.data();
-  const VertexId* tets = mesh.tets.data();
+  VertexId* tets = mesh.tets.data();
   ws.cavity.clear();
+  ws.rejected.clear();
   ws.boundary.clear();
-  resetVisited(ws, 256);
-  std::size_t tested = 1;
-  bool fresh;
-  visit(ws, start, fresh).inCavity = true;
+  setMark(tets + 4 * static_cast<std::size_t>(start), 3);
+  setMark(tets + 4 * static_cast<std::size_t>(start), 2);
   ws.cavity.push_back(start);
   for (std::size_t i = 0; i < ws.cavity.size(); ++i)
   {
@@ -403,41 +367,37 @@ void growCavityFast(TetMesh& mesh, VertexId v, TetId start, InsertionWorkspace& 
       const FaceRef n = cn[f];
       if (n != kNoNeighbor)
       {
-        const TetId u = faceTet(n);
-        InsertionWorkspace::VisitSlot* slot = &visit(ws, u, fresh);
-        if (!fresh && slot->inCavity)
+        VertexId* uv = tets + 4 * static_cast<std::size_t>(faceTet(n));
+        if (hasMark(uv, 2))
           continue; // internal face
-        if (fresh)
+        if (!hasMark(uv, 3))
         {
-          if (2 * ++tested > ws.visited.size())
-          {
-            // Rare huge cavity: rebuild the set larger. Rejected tets are forgotten and may be
-            // tested again, which gives the same answer.
-            resetVisited(ws, 2 * tested);
-            tested = ws.cavity.size() + 1;
-            for (TetId w : ws.cavity)
-              visit(ws, w, fresh).inCavity = true;
-            slot = &visit(ws, u, fresh);
-          }
-          const VertexId* uv = tets + 4 * static_cast<std::size_t>(u);
+          setMark(uv, 3);
           if (predicates::insphereSoSFiltered(
-                coords, uv[0], uv[1], uv[2], uv[3], v, ws.perturbationIds) > 0)
+                coords, uv[0], uv[1], uv[2], unmarked(uv[3]), v, ws.perturbationIds) > 0)
           {
-            __builtin_prefetch(neighbors + 4 * static_cast<std::size_t>(u));
-            slot->inCavity = true;
-            ws.cavity.push_back(u);
+            setMark(uv, 2);
+            __builtin_prefetch(neighbors + 4 * static_cast<std::size_t>(faceTet(n)));
+            ws.cavity.push_back(faceTet(n));
             continue;
           }
+          ws.rejected.push_back(faceTet(n));
         }
         // The new tet glued here will write the outside tet's neighbour entry.
         __builtin_prefetch(neighbors + n, 1);
       }
       const VertexId* tv = tets + 4 * static_cast<std::size_t>(c);
-      ws.boundary.push_back(
-        { { tv[kFaceVertices[f][0]], tv[kFaceVertices[f][1]], tv[kFaceVertices[f][2]] },
-          n,
-          false });
+      ws.boundary.push_back({ { unmarked(tv[kFaceVertices[f][0]]),
+                                unmarked(tv[kFaceVertices[f][1]]),
+                                unmarked(tv[kFaceVertices[f][2]]) },
+        n,
+        false });
     }
+  }
+  for (TetId r : ws.rejected)
+  {
+    VertexId* rv = tets + 4 * static_cast<std::size_t>(r);
+    rv[3] = unmarked(rv[3]);
   }
 }
 
