@@ -466,11 +466,12 @@ template<bool Checked>
 TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
 {
   const std::size_t faceCount = ws.boundary.size();
-  // Edge table: 3*faceCount/2 undirected edges; keep the load factor under 1/4.
-  if (ws.edgeTable.size() < 6 * faceCount)
+  // Edge table: at most 3*faceCount entries (fast mode stores both directions of each edge);
+  // keep the load factor under 1/4.
+  if (ws.edgeTable.size() < 12 * faceCount)
   {
     std::size_t size = ws.edgeTable.size();
-    while (size < 6 * faceCount)
+    while (size < 12 * faceCount)
       size *= 2;
     ws.edgeTable.assign(size, InsertionWorkspace::EdgeSlot{ 0, -1, -1, 0 });
     ws.edgeStamp = 0;
