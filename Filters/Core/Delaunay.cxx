@@ -13,8 +13,10 @@
 //  4. the cavity tets are replaced by the cones (boundary face, p), reusing the cavity's
 //     slots first. Internal faces of the cone are glued through a small edge hash table.
 //
-// Scratch flag bits used (and cleared before returning): kScratchBit0 = tet is in the
-// cavity, kScratchBit1 = tet was tested and is not in the cavity.
+// Checked mode (insertVertex) uses scratch flag bits, cleared before returning: kScratchBit0 =
+// tet is in the cavity, kScratchBit1 = tet was tested and is not in the cavity. Fast mode
+// (buildDelaunay, no constraints) never touches mesh.flags: it marks tets in the sign bits of
+// their vertex ids (see growCavityFast), also cleared before the insertion returns.
 #include "Delaunay.h"
 
 #include "FilteredPredicates.h"
