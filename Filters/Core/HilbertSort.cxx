@@ -10,6 +10,21 @@
 namespace tetmesher
 {
 
+namespace
+{
+// Moves bit b of x (b < 21) to bit 3b.
+inline std::uint64_t spreadBits(std::uint32_t x)
+{
+  std::uint64_t v = x & 0x1FFFFFu;
+  v = (v | (v << 32)) & 0x001F00000000FFFFULL;
+  v = (v | (v << 16)) & 0x001F0000FF0000FFULL;
+  v = (v | (v << 8)) & 0x100F00F00F00F00FULL;
+  v = (v | (v << 4)) & 0x10C30C30C30C30C3ULL;
+  v = (v | (v << 2)) & 0x1249249249249249ULL;
+  return v;
+}
+} // namespace
+
 std::uint64_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z, int bits)
 {
   std::uint32_t axes[3] = { x, y, z };
@@ -18,16 +33,14 @@ std::uint64_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z, in
   for (std::uint32_t q = top; q > 1; q >>= 1)
   {
     const std::uint32_t lowerMask = q - 1;
+    // Branch-free (the bit tested is a coin flip on random points): when bit q of axis i is
+    // set, reflect the low bits of axis 0; otherwise swap the low bits of axes 0 and i.
     for (int i = 0; i < 3; ++i)
     {
-      if (axes[i] & q)
-        axes[0] ^= lowerMask; // reflect
-      else
-      {
-        const std::uint32_t t = (axes[0] ^ axes[i]) & lowerMask; // swap low bits of 0 and i
-        axes[0] ^= t;
-        axes[i] ^= t;
-      }
+      const std::uint32_t set = 0u - static_cast<std::uint32_t>((axes[i] & q) != 0);
+      const std::uint32_t t = (axes[0] ^ axes[i]) & lowerMask & ~set;
+      axes[0] ^= (lowerMask & set) ^ t;
+      axes[i] ^= t;
     }
   }
   // Gray encoding.
@@ -35,16 +48,14 @@ std::uint64_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z, in
     axes[i] ^= axes[i - 1];
   std::uint32_t t = 0;
   for (std::uint32_t q = top; q > 1; q >>= 1)
-    if (axes[2] & q)
-      t ^= q - 1;
+    t ^= (q - 1) & (0u - static_cast<std::uint32_t>((axes[2] & q) != 0));
   for (int i = 0; i < 3; ++i)
     axes[i] ^= t;
-  // Interleave: bit b of axis 0 is the most significant of the three at level b.
-  std::uint64_t key = 0;
-  for (int b = bits - 1; b >= 0; --b)
-    for (int i = 0; i < 3; ++i)
-      key = (key << 1) | ((axes[i] >> b) & 1u);
-  return key;
+  // Interleave: bit b of axis 0 is the most significant of the three at level b, i.e. key bit
+  // 3b + 2 (axis 1: 3b + 1, axis 2: 3b).
+  const std::uint32_t used = (1u << bits) - 1;
+  return (spreadBits(axes[0] & used) << 2) | (spreadBits(axes[1] & used) << 1) |
+    spreadBits(axes[2] & used);
 }
 
 namespace

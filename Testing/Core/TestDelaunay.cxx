@@ -1,6 +1,7 @@
 // Delaunay kernel: exact validity on random, degenerate (grid, sphere), clustered and
 // duplicate-laden input; determinism; hull volume; constrained insertion.
 #include "Delaunay.h"
+#include "HilbertSort.h"
 #include "MeshValidation.h"
 #include "Predicates.h"
 
@@ -504,4 +505,48 @@ TEST(Delaunay, CoordinatesBeyondTheExactRangeAreRefused)
   EXPECT_NE(r.error.find("vertex 7 has a non-finite coordinate"), std::string::npos) << r.error;
   tiny.coords[3 * 7 + 1] = 0.0; // zero is exact at any scale
   EXPECT_TRUE(buildDelaunay(tiny).ok);
+}
+
+// The branch-free Hilbert keys must equal the textbook transpose algorithm (the insertion
+// order, hence every tet id, depends on them).
+TEST(Delaunay, HilbertKeysMatchTheTransposeAlgorithm)
+{
+  auto reference = [](std::uint32_t x, std::uint32_t y, std::uint32_t z, int bits)
+  {
+    std::uint32_t axes[3] = { x, y, z };
+    const std::uint32_t top = 1u << (bits - 1);
+    for (std::uint32_t q = top; q > 1; q >>= 1)
+      for (int i = 0; i < 3; ++i)
+      {
+        if (axes[i] & q)
+          axes[0] ^= q - 1;
+        else
+        {
+          const std::uint32_t t = (axes[0] ^ axes[i]) & (q - 1);
+          axes[0] ^= t;
+          axes[i] ^= t;
+        }
+      }
+    for (int i = 1; i < 3; ++i)
+      axes[i] ^= axes[i - 1];
+    std::uint32_t t = 0;
+    for (std::uint32_t q = top; q > 1; q >>= 1)
+      if (axes[2] & q)
+        t ^= q - 1;
+    std::uint64_t key = 0;
+    for (int b = bits - 1; b >= 0; --b)
+      for (int i = 0; i < 3; ++i)
+        key = (key << 1) | (((axes[i] ^ t) >> b) & 1u);
+    return key;
+  };
+  std::mt19937 gen(7);
+  for (int bits = 1; bits <= 21; ++bits)
+  {
+    const std::uint32_t mask = (1u << bits) - 1;
+    for (int k = 0; k < 2000; ++k)
+    {
+      const std::uint32_t x = gen() & mask, y = gen() & mask, z = gen() & mask;
+      ASSERT_EQ(hilbertIndex(x, y, z, bits), reference(x, y, z, bits)) << bits;
+    }
+  }
 }

@@ -2,7 +2,9 @@
 // run on a .node file) and CGAL's Delaunay_triangulation_3, on the same points.
 //
 // Every measurement runs in a forked child so that each one's peak RSS (getrusage) is its
-// own. Usage: TetMesherKernelBenchmark [--quick] [--no-tetgen] [--no-cgal] [--no-10m]
+// own. Wall time and CPU time (user + system) are both reported: on a shared machine the CPU
+// time ratios are the steadier ones. Usage: TetMesherKernelBenchmark [--quick] [--no-tetgen]
+// [--no-cgal] [--no-10m]
 #include "Delaunay.h"
 
 #ifdef TETMESHER_BENCHMARK_CGAL
@@ -29,6 +31,7 @@ namespace
 struct Measurement
 {
   double seconds = -1;
+  double cpuSeconds = -1; // user + system time: on a shared machine, much steadier than wall
   double tets = 0;
   double peakRssBytes = 0; // peak resident set of the process doing the work
   double baseRssBytes = 0; // resident set before the work started (input points etc.)
@@ -37,6 +40,14 @@ struct Measurement
 double nowSeconds()
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double cpuTime(int who)
+{
+  rusage usage{};
+  getrusage(who, &usage);
+  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+    1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
 }
 
 double peakRss(int who)
@@ -108,11 +119,12 @@ Measurement runOurs(const std::vector<double>& points)
     {
       Measurement m;
       m.baseRssBytes = peakRss(RUSAGE_SELF);
-      const double start = nowSeconds();
+      const double start = nowSeconds(), cpuStart = cpuTime(RUSAGE_SELF);
       tetmesher::TetMesh mesh;
       mesh.coords = points;
       const tetmesher::DelaunayResult r = tetmesher::buildDelaunay(mesh);
       m.seconds = nowSeconds() - start;
+      m.cpuSeconds = cpuTime(RUSAGE_SELF) - cpuStart;
       if (!r.ok)
       {
         std::fprintf(stderr, "buildDelaunay failed: %s\n", r.error.c_str());
@@ -145,9 +157,10 @@ Measurement runTetGen(const std::vector<double>& points)
       // -Q quiet; -N -E -F: write no output files, so we time the tetrahedralization and
       // the reading of the .node file only.
       const std::string cmd = "tetgen -QNEF " + base + ".node > /dev/null 2>&1";
-      const double start = nowSeconds();
+      const double start = nowSeconds(), cpuStart = cpuTime(RUSAGE_CHILDREN);
       const int rc = std::system(cmd.c_str());
       r.seconds = rc == 0 ? nowSeconds() - start : -1;
+      r.cpuSeconds = cpuTime(RUSAGE_CHILDREN) - cpuStart;
       r.peakRssBytes = peakRss(RUSAGE_CHILDREN);
       return r;
     });
@@ -165,13 +178,14 @@ Measurement runCgal(const std::vector<double>& points)
       using Triangulation = CGAL::Delaunay_triangulation_3<Kernel>;
       Measurement m;
       m.baseRssBytes = peakRss(RUSAGE_SELF);
-      const double start = nowSeconds();
+      const double start = nowSeconds(), cpuStart = cpuTime(RUSAGE_SELF);
       std::vector<Kernel::Point_3> pts;
       pts.reserve(points.size() / 3);
       for (std::size_t i = 0; i < points.size(); i += 3)
         pts.emplace_back(points[i], points[i + 1], points[i + 2]);
       Triangulation t(pts.begin(), pts.end());
       m.seconds = nowSeconds() - start;
+      m.cpuSeconds = cpuTime(RUSAGE_SELF) - cpuStart;
       m.tets = static_cast<double>(t.number_of_finite_cells());
       m.peakRssBytes = peakRss(RUSAGE_SELF);
       return m;
@@ -179,7 +193,7 @@ Measurement runCgal(const std::vector<double>& points)
 }
 #endif
 
-void report(const char* who, const Measurement& m, double points, double ourSeconds)
+void report(const char* who, const Measurement& m, double points, const Measurement& ours)
 {
   if (m.seconds < 0)
   {
@@ -193,8 +207,12 @@ void report(const char* who, const Measurement& m, double points, double ourSeco
       m.tets,
       (m.peakRssBytes - m.baseRssBytes) / m.tets);
   std::printf("  peak RSS %7.1f MiB", m.peakRssBytes / (1024.0 * 1024.0));
-  if (ourSeconds > 0 && m.seconds > 0)
-    std::printf("  time/ours %.2fx", m.seconds / ourSeconds);
+  if (ours.seconds > 0 && m.seconds > 0)
+    std::printf("  time/ours %.2fx", m.seconds / ours.seconds);
+  if (m.cpuSeconds > 0)
+    std::printf("  cpu %.3f s", m.cpuSeconds);
+  if (ours.cpuSeconds > 0 && m.cpuSeconds > 0)
+    std::printf("  cpu/ours %.2fx", m.cpuSeconds / ours.cpuSeconds);
   std::printf("\n");
 }
 
@@ -241,17 +259,17 @@ int main(int argc, char** argv)
     std::printf("%s, %.0f points\n", c.kind.c_str(), n);
     std::fflush(stdout);
     const Measurement ours = runOurs(points);
-    report("ours", ours, n, -1);
+    report("ours", ours, n, Measurement{});
     std::fflush(stdout);
     if (tetgen)
     {
-      report("tetgen", runTetGen(points), n, ours.seconds);
+      report("tetgen", runTetGen(points), n, ours);
       std::fflush(stdout);
     }
 #ifdef TETMESHER_BENCHMARK_CGAL
     if (cgal)
     {
-      report("cgal", runCgal(points), n, ours.seconds);
+      report("cgal", runCgal(points), n, ours);
       std::fflush(stdout);
     }
 #else
