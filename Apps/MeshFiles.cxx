@@ -22,6 +22,7 @@
 #include <fstream>
 #include <sstream>
 #include <sys/stat.h>
+#include <unistd.h>
 #include <vector>
 
 namespace tetmesher
@@ -67,11 +68,31 @@ void RunReader(vtkAlgorithm* reader, const std::string& path)
   }
 }
 
+// The reader module, by its path next to this executable (bin/../lib), else by name through
+// the RUNPATH. The path comes first because a bare name is looked up in the RUNPATH of the
+// object that calls dlopen, which under ASan is its interceptor in libasan, not tetmesher.
+void* LoadReaderModule()
+{
+  const char* name = "libtetmesherSurfaceReaders.so";
+  char self[4096];
+  const ssize_t length = readlink("/proc/self/exe", self, sizeof(self) - 1);
+  if (length > 0)
+  {
+    std::string exe(self, static_cast<std::size_t>(length));
+    std::string dir = TETMESHER_READERS_DIR;
+    if (dir.empty() || dir[0] != '/')
+      dir = exe.substr(0, exe.find_last_of('/') + 1) + dir;
+    if (void* module = dlopen((dir + "/" + name).c_str(), RTLD_NOW | RTLD_LOCAL))
+      return module;
+  }
+  return dlopen(name, RTLD_NOW | RTLD_LOCAL);
+}
+
 // A function of the reader module (SurfaceReaders.cxx), loaded on first use and kept loaded
 // (the objects it makes use its code).
 void* ReaderModuleSymbol(const std::string& path, const char* name)
 {
-  static void* module = dlopen("libtetmesherSurfaceReaders.so", RTLD_NOW | RTLD_LOCAL);
+  static void* module = LoadReaderModule();
   void* symbol = module ? dlsym(module, name) : nullptr;
   if (!symbol)
   {
