@@ -4,7 +4,8 @@
 #   scripts/fuzz.sh [SECONDS] [extra libFuzzer options...]     (default 600 s)
 #
 # Builds Testing/Fuzz standalone with clang into build-fuzz/ (core only, no VTK), makes the
-# seed corpus from Data/ surfaces and Testing/Data/defects/ (Testing/Fuzz/make_seeds.py), and
+# seed corpus from Data/ surfaces and Testing/Data/defects/ (Testing/Fuzz/make_seeds.py) plus
+# the stored regressions (Testing/Fuzz/regressions/), and
 # runs FuzzSurface on build-fuzz/corpus (kept between runs) with -timeout=10 (a hang is an
 # input that takes more than 10 s). Crashes, hangs (timeout-*) and leaks land in
 # build-fuzz/artifacts/; replay one with `build-fuzz/FuzzSurface FILE`, then add it to
@@ -42,6 +43,9 @@ surfaces+=(Testing/Data/defects/*.off)
 python=python3
 [ -x /usr/bin/python3 ] && python=/usr/bin/python3  # Debian's, with vtkmodules for .vtp
 "$python" Testing/Fuzz/make_seeds.py "$build/seeds" "${surfaces[@]}"
+# The stored regressions are seeds too: a run then also replays every input that once
+# crashed or hung, so a clean run says they stay fixed under the fuzzer's own build.
+cp Testing/Fuzz/regressions/*.bin "$build/seeds/"
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:symbolize=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
