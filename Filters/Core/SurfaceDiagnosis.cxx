@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <sstream>
 
@@ -18,13 +19,14 @@ using predicates::orient3d;
 namespace
 {
 
-constexpr int kKindCount = static_cast<int>(SurfaceDefect::CoordinateOutOfRange) + 1;
+constexpr int kKindCount = static_cast<int>(SurfaceDefect::OutlyingPoint) + 1;
 
 // Order in which kinds are listed (records and summary).
 constexpr SurfaceDefect kReportOrder[kKindCount] = { SurfaceDefect::Empty,
   SurfaceDefect::InvalidPointId,
   SurfaceDefect::NonFiniteCoordinate,
   SurfaceDefect::CoordinateOutOfRange,
+  SurfaceDefect::OutlyingPoint,
   SurfaceDefect::DuplicatePoint,
   SurfaceDefect::DegenerateTriangle,
   SurfaceDefect::DuplicateTriangle,
@@ -110,6 +112,7 @@ public:
     checkIds();
     checkPoints();
     checkTriangles();
+    checkProportions();
     checkEdges();
     if (Options.checkSelfIntersections)
       checkIntersections();
@@ -231,6 +234,55 @@ private:
         add(SurfaceDefect::DuplicatePoint, std::move(group), {});
       }
       i = j;
+    }
+  }
+
+  // Points of usable triangles farther (per axis) from the median point than kMaxProportion
+  // times the shortest edge. O(n): medians by nth_element.
+  void checkProportions()
+  {
+    std::vector<char> used(static_cast<std::size_t>(PointCount), 0);
+    double shortest = std::numeric_limits<double>::infinity();
+    for (std::int32_t t = 0; t < TriCount; ++t)
+    {
+      if (State[t] & (kNoTopology | kNonFinite))
+        continue;
+      const std::int32_t* v = tri(t);
+      for (int e = 0; e < 3; ++e)
+      {
+        used[v[e]] = 1;
+        const double* p = pt(v[e]);
+        const double* q = pt(v[(e + 1) % 3]);
+        const double length =
+          std::max({ std::abs(p[0] - q[0]), std::abs(p[1] - q[1]), std::abs(p[2] - q[2]) });
+        if (length > 0)
+          shortest = std::min(shortest, length);
+      }
+    }
+    if (!(shortest < std::numeric_limits<double>::infinity()))
+      return;
+    std::vector<std::int32_t> ids;
+    for (std::int32_t i = 0; i < PointCount; ++i)
+    {
+      if (used[i])
+        ids.push_back(i);
+    }
+    double median[3];
+    std::vector<double> values(ids.size());
+    for (int k = 0; k < 3; ++k)
+    {
+      for (std::size_t i = 0; i < ids.size(); ++i)
+        values[i] = pt(ids[i])[k];
+      std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+      median[k] = values[values.size() / 2];
+    }
+    const double limit = kMaxProportion * shortest;
+    for (std::int32_t i : ids)
+    {
+      const double* p = pt(i);
+      if (std::abs(p[0] - median[0]) > limit || std::abs(p[1] - median[1]) > limit ||
+        std::abs(p[2] - median[2]) > limit)
+        add(SurfaceDefect::OutlyingPoint, { i }, {});
     }
   }
 
@@ -631,6 +683,11 @@ const char* defectLabel(SurfaceDefect kind, bool plural)
     case SurfaceDefect::InvalidPointId:
       return plural ? "triangles with out-of-range point ids"
                     : "triangle with out-of-range point ids";
+    case SurfaceDefect::OutlyingPoint:
+      return plural ? "points out of all proportion to the surface (farther from its median "
+                      "point than 1e15 times its shortest edge: a corrupted coordinate?)"
+                    : "point out of all proportion to the surface (farther from its median "
+                      "point than 1e15 times its shortest edge: a corrupted coordinate?)";
     case SurfaceDefect::CoordinateOutOfRange:
       return plural ? "points with coordinates too large or too small to decide exactly "
                       "(magnitudes beyond 1e-40..1e50; scale the model)"

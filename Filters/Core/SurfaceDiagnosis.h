@@ -43,7 +43,14 @@ enum class SurfaceDefect
   Empty,                   // no points or no triangles
   InvalidPointId,          // pointIds: the triangle's 3 ids; triangleIds: {t}
   CoordinateOutOfRange,    // pointIds: {p} (finite, but too large or too small to be exact)
+  OutlyingPoint,           // pointIds: {p}, farther from the median point than
+                           // kMaxProportion x the shortest edge (a corrupted coordinate)
 };
+
+// Beyond this ratio of a point's distance from the surface's median point to the shortest
+// edge, doubles cannot place points between the two scales: the mesher could not recover
+// the edges to such a point (a fuzzed sphere with one vertex at 1e36 failed after seconds).
+constexpr double kMaxProportion = 1e15;
 
 // Short plural label of a defect kind, e.g. "open edges".
 const char* defectLabel(SurfaceDefect kind, bool plural = true);

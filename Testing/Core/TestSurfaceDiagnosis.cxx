@@ -547,7 +547,9 @@ TEST(SurfaceDiagnosis, CoordinatesBeyondTheExactRange)
   s.pts[3 * 2 + 1] = 7.8e143;
   s.pts[3 * 4] = -1e-45;
   s.pts[3 * 5] = std::numeric_limits<double>::quiet_NaN();
-  s.pts[3 * 6] = 1e50; // the ends of the range are fine
+  // The ends of the range are exact. (Point 6 is out of all proportion, but every triangle
+  // on it also has an unusable point, so the proportion check does not see it.)
+  s.pts[3 * 6] = 1e50;
   s.pts[3 * 6 + 1] = -1e-40;
   const SurfaceDiagnosis d = s.diagnose();
   ASSERT_EQ(d.defects.size(), 3u) << d.summary();
@@ -557,6 +559,26 @@ TEST(SurfaceDiagnosis, CoordinatesBeyondTheExactRange)
   EXPECT_NE(d.summary().find("2 points with coordinates too large or too small to decide exactly"),
     std::string::npos)
     << d.summary();
+}
+
+TEST(SurfaceDiagnosis, PointOutOfAllProportion)
+{
+  // A unit cube with one corner pulled far out (as a corrupted coordinate would): valid for
+  // the exact checks, but no double lies between the scales of its edges.
+  Surface s = cube();
+  s.pts[3 * 6 + 2] = 2e15; // 2e15 x the shortest edge (1) from the median
+  SurfaceDiagnosis d = s.diagnose();
+  ASSERT_EQ(d.defects.size(), 1u) << d.summary();
+  expectRecord(d.defects[0], SurfaceDefect::OutlyingPoint, { 6 }, {});
+  EXPECT_FALSE(d.ok());
+  EXPECT_NE(d.summary().find("out of all proportion"), std::string::npos) << d.summary();
+  // Up to the bound it is a (thin) surface like any other; scaling never matters.
+  s.pts[3 * 6 + 2] = 5e14;
+  EXPECT_TRUE(s.diagnose().ok()) << s.diagnose().summary();
+  Surface tiny = cube();
+  for (double& x : tiny.pts)
+    x *= 1e-30;
+  EXPECT_TRUE(tiny.diagnose().ok()) << tiny.diagnose().summary();
 }
 
 TEST(SurfaceDiagnosis, DuplicatePointUnused)

@@ -56,6 +56,11 @@ CASES = {
         "1e-40..1e50; scale the model) (point 6)", False,
         [("point with coordinates too large or too small to decide exactly (magnitudes beyond "
           "1e-40..1e50; scale the model)", -1)]),
+    "outlying-point.off": (
+        "1 point out of all proportion to the surface (farther from its median point than 1e15 "
+        "times its shortest edge: a corrupted coordinate?) (point 6)", False,
+        [("point out of all proportion to the surface (farther from its median point than "
+          "1e15 times its shortest edge: a corrupted coordinate?)", -1)]),
     # One polygon (cell 10) around a square hole through a slit: VTK's triangulation of it
     # repeats vertex 4 (two zero-area triangles) and leaves the hole's rim open.
     "keyhole-polygon.off": (

@@ -94,6 +94,12 @@ def main():
               [p if i != 6 else (1, 1, 7.8e143) for i, p in enumerate(CUBE_POINTS)],
               CUBE_TRIANGLES, "unit cube whose point 6 is pulled out to z = 7.8e143")
 
+    # Exact, but out of all proportion: one corner 1e36 away from a unit cube (a fuzzer's
+    # sphere like this defeated edge recovery after seconds; TetGen aborts on it).
+    write_off("outlying-point.off",
+              [p if i != 6 else (1, 1, 1e36) for i, p in enumerate(CUBE_POINTS)],
+              CUBE_TRIANGLES, "unit cube whose point 6 is pulled out to z = 1e36")
+
     # A quad with a hole cannot be an OFF face; the closest: the top of a box as one
     # non-convex polygon that goes around a hole and back along a slit (a keyhole).
     write_off("keyhole-polygon.off",
