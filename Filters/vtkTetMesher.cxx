@@ -1,6 +1,7 @@
 #include "vtkTetMesher.h"
 
 #include "MemoryBudget.h"
+#include "MeshAssembly.h"
 #include "SurfaceDiagnosis.h"
 #include "TetQualityArrays.h"
 #include "VolumeMesher.h"
@@ -49,25 +50,6 @@ namespace
 // right-hand normal of points 0,1,2 towards point 3). Swapping points 0 and 1 converts, and
 // swaps the faces opposite them.
 constexpr int kVtkFromCore[4] = { 1, 0, 2, 3 };
-
-// A triangle as its sorted vertex ids.
-using FaceKey = std::array<std::int32_t, 3>;
-FaceKey MakeFaceKey(const std::int32_t* ids)
-{
-  FaceKey key{ ids[0], ids[1], ids[2] };
-  std::sort(key.begin(), key.end());
-  return key;
-}
-struct FaceKeyHash
-{
-  std::size_t operator()(const FaceKey& k) const
-  {
-    std::uint64_t h = static_cast<std::uint32_t>(k[0]);
-    h = h * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint32_t>(k[1]);
-    h = h * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint32_t>(k[2]);
-    return static_cast<std::size_t>(h ^ (h >> 29));
-  }
-};
 
 // The input cells and points named by the diagnosis, for users to see them (ParaView: colour
 // output 2 by DefectKind). Triangles become polygons, lone points vertices; cell data
@@ -580,43 +562,16 @@ int vtkTetMesher::RequestData(vtkInformation*,
   inputFaces->SetNumberOfTuples(tetCount);
   inputFaces->Fill(-1);
   // Every tet face lying on an input triangle (both sides of an interface triangle).
-  std::unordered_map<FaceKey, std::int32_t, FaceKeyHash> triangleOfFace;
-  triangleOfFace.reserve(static_cast<std::size_t>(triangleCount));
-  for (std::int32_t tri = 0; tri < triangleCount; ++tri)
-  {
-    triangleOfFace.emplace(MakeFaceKey(&triangles[3 * static_cast<std::size_t>(tri)]), tri);
-  }
+  const std::vector<std::int32_t> faceTriangle =
+    tetmesher::tetFaceTriangles(result.tets, triangles.data(), triangleCount);
   for (vtkIdType t = 0; t < tetCount; ++t)
   {
-    const std::int32_t* tet = &result.tets[static_cast<std::size_t>(4 * t)];
-    // Faces with a vertex beyond the input points (most) are no input triangle: not hashed.
-    int beyond = -1, beyondCount = 0;
-    for (int i = 0; i < 4; ++i)
-      if (tet[i] >= pointCount)
-      {
-        beyond = i;
-        ++beyondCount;
-      }
-    if (beyondCount > 1)
-      continue;
     for (int f = 0; f < 4; ++f)
     {
-      if (beyondCount == 1 && f != beyond)
-        continue; // face f contains every vertex but f
-      std::int32_t face[3];
-      for (int k = 0, n = 0; k < 4; ++k)
-      {
-        if (k != f)
-        {
-          face[n++] = tet[k];
-        }
-      }
-      auto found = triangleOfFace.find(MakeFaceKey(face));
-      if (found != triangleOfFace.end())
-      {
+      const std::int32_t tri = faceTriangle[static_cast<std::size_t>(4 * t + f)];
+      if (tri >= 0)
         inputFaces->SetTypedComponent(
-          t, kVtkFromCore[f], cellOfTriangle[static_cast<std::size_t>(found->second)]);
-      }
+          t, kVtkFromCore[f], cellOfTriangle[static_cast<std::size_t>(tri)]);
     }
   }
   output->GetCellData()->AddArray(inputFaces);

@@ -93,7 +93,7 @@ void extractRegionMesh(const RegionMesh& in,
   }
 }
 
-std::vector<std::int32_t> findTriangleFaces(const std::vector<std::int32_t>& tets,
+std::vector<std::int32_t> tetFaceTriangles(const std::vector<std::int32_t>& tets,
   const std::int32_t* triangles,
   std::int32_t triangleCount)
 {
@@ -107,7 +107,7 @@ std::vector<std::int32_t> findTriangleFaces(const std::vector<std::int32_t>& tet
     maxVertex = std::max(maxVertex, key[2]);
     index.emplace(key, i);
   }
-  std::vector<std::int32_t> faces(static_cast<std::size_t>(triangleCount), -1);
+  std::vector<std::int32_t> faceTriangle(tets.size(), -1);
   for (std::size_t t = 0; t < tets.size() / 4; ++t)
   {
     // Most tets have an interior vertex (ids above every triangle's): skip the hashing of the
@@ -126,11 +126,25 @@ std::vector<std::int32_t> findTriangleFaces(const std::vector<std::int32_t>& tet
     {
       if (beyondCount == 1 && f != beyond)
         continue; // face f contains every vertex but f
-      const std::array<VertexId, 3> key = sortedFace(tets, t, f);
-      auto found = index.find(key);
-      if (found != index.end() && faces[static_cast<std::size_t>(found->second)] < 0)
-        faces[static_cast<std::size_t>(found->second)] = makeFaceRef(static_cast<TetId>(t), f);
+      auto found = index.find(sortedFace(tets, t, f));
+      if (found != index.end())
+        faceTriangle[4 * t + static_cast<std::size_t>(f)] = found->second;
     }
+  }
+  return faceTriangle;
+}
+
+std::vector<std::int32_t> findTriangleFaces(const std::vector<std::int32_t>& tets,
+  const std::int32_t* triangles,
+  std::int32_t triangleCount)
+{
+  const std::vector<std::int32_t> faceTriangle = tetFaceTriangles(tets, triangles, triangleCount);
+  std::vector<std::int32_t> faces(static_cast<std::size_t>(triangleCount), -1);
+  for (std::size_t face = 0; face < faceTriangle.size(); ++face)
+  {
+    const std::int32_t tri = faceTriangle[face];
+    if (tri >= 0 && faces[static_cast<std::size_t>(tri)] < 0)
+      faces[static_cast<std::size_t>(tri)] = static_cast<std::int32_t>(face); // = 4*t+f
   }
   return faces;
 }

@@ -33,6 +33,12 @@ void extractRegionMesh(const RegionMesh& in,
   std::vector<std::int32_t>& tets,
   std::vector<std::int32_t>& regionIds);
 
+// For each tet face 4*t+f (face f opposite vertex f of tet t in `tets`), the input triangle
+// with the same three vertices, or -1: both sides of an interface triangle name it.
+std::vector<std::int32_t> tetFaceTriangles(const std::vector<std::int32_t>& tets,
+  const std::int32_t* triangles,
+  std::int32_t triangleCount);
+
 // For each input triangle, 4*t+f of a tet face with the same three vertices (face f opposite
 // vertex f of tet t in `tets`), or -1 if no tet has it.
 std::vector<std::int32_t> findTriangleFaces(const std::vector<std::int32_t>& tets,
