@@ -5,11 +5,14 @@
 #include "MeshTopology.h"
 #include "Predicates.h"
 #include "RecoveryGeometry.h"
+#include "TriangleDistance.h"
 #include "TriangleIntersection.h"
 
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <set>
@@ -330,6 +333,12 @@ private:
   // `key` (an edge index, or edges.size() + a triangle index) that meets another one other
   // than in a vertex or edge they share; "" if none does.
   std::string intersectingTriangles(std::size_t key) const;
+  // "input triangles i and j come within d of each other (...)" for the first triangle of
+  // the item `key` that another input triangle (sharing no edge part with it) comes closer
+  // to than options_.nearTouchRatio times their longest edge; "" if none does.
+  std::string nearlyTouchingTriangles(std::size_t key) const;
+  // The input triangles of the recovery item `key` (an edge's triangles, or the triangle).
+  std::vector<std::size_t> itemTriangles(std::size_t key) const;
   bool onInputSurface(const double* x) const;
   void markConstrained(FaceRef face);
   // True when the time budget is spent or the progress callback asked to abort (polled a
@@ -997,7 +1006,7 @@ bool Recovery::insertSteinerNear(VertexId seed, const ItemCost& exactCost)
   return false;
 }
 
-std::string Recovery::intersectingTriangles(std::size_t key) const
+std::vector<std::size_t> Recovery::itemTriangles(std::size_t key) const
 {
   const auto& triangles = surface_.triangles;
   std::vector<std::size_t> mine;
@@ -1013,6 +1022,70 @@ std::string Recovery::intersectingTriangles(std::size_t key) const
         mine.push_back(i);
     }
   }
+  return mine;
+}
+
+std::string Recovery::nearlyTouchingTriangles(std::size_t key) const
+{
+  const auto& triangles = surface_.triangles;
+  for (std::size_t i : itemTriangles(key))
+  {
+    const auto& t = triangles[i];
+    const double* p[3] = { point(t[0]), point(t[1]), point(t[2]) };
+    const auto& box = triangleBoxes_[i];
+    for (std::size_t j = 0; j < triangles.size(); ++j)
+    {
+      const auto& u = triangles[j];
+      const double* q[3] = { point(u[0]), point(u[1]), point(u[2]) };
+      double size = 0;
+      for (int k = 0; k < 3; ++k)
+      {
+        size = std::max(size,
+          std::sqrt(geometry::segmentDistanceSquared(p[k], p[k], p[(k + 1) % 3], p[(k + 1) % 3])));
+        size = std::max(size,
+          std::sqrt(geometry::segmentDistanceSquared(q[k], q[k], q[(k + 1) % 3], q[(k + 1) % 3])));
+      }
+      const double tolerance = options_.nearTouchRatio * size;
+      const auto& other = triangleBoxes_[j];
+      bool apart = j == i;
+      for (int k = 0; k < 3 && !apart; ++k)
+        apart = box[k] > other[k + 3] + tolerance || other[k] > box[k + 3] + tolerance;
+      if (apart)
+        continue;
+      // Shared vertices touch by construction: measure only the parts away from them (the
+      // vertices of each triangle that the other lacks, against the other triangle).
+      const int shared = static_cast<int>(std::count(u.begin(), u.end(), t[0]) +
+        std::count(u.begin(), u.end(), t[1]) + std::count(u.begin(), u.end(), t[2]));
+      double gap2 = std::numeric_limits<double>::infinity();
+      if (shared == 0)
+        gap2 = geometry::triangleDistanceSquared(p, q);
+      else
+        for (int k = 0; k < 3; ++k)
+        {
+          if (std::count(u.begin(), u.end(), t[k]) == 0)
+            gap2 = std::min(gap2, geometry::pointTriangleDistanceSquared(p[k], q[0], q[1], q[2]));
+          if (std::count(t.begin(), t.end(), u[k]) == 0)
+            gap2 = std::min(gap2, geometry::pointTriangleDistanceSquared(q[k], p[0], p[1], p[2]));
+        }
+      const double gap = std::sqrt(gap2);
+      if (!(gap <= tolerance))
+        continue;
+      std::ostringstream out;
+      out << "input triangles " << std::min(i, j) << " and " << std::max(i, j);
+      if (gap > 0)
+        out << " come within " << gap << " of each other (" << gap / size << " of their size)";
+      else
+        out << " touch to double precision without intersecting exactly";
+      return out.str();
+    }
+  }
+  return {};
+}
+
+std::string Recovery::intersectingTriangles(std::size_t key) const
+{
+  const auto& triangles = surface_.triangles;
+  const std::vector<std::size_t> mine = itemTriangles(key);
   auto overlap = [](const std::array<double, 6>& x, const std::array<double, 6>& y)
   {
     for (int k = 0; k < 3; ++k)
@@ -1175,6 +1248,19 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
       // Unchecked input: once the item looks stuck, or when it fails, name an intersecting pair.
       const int probeAt = options_.intersectionProbeAfter;
       std::string crossing = probeAt > 0 && count == probeAt ? intersectingTriangles(key) : "";
+      // Any input: an item that needs many Steiner points near triangles that nearly touch
+      // (closer than doubles can place points between, relative to their size) would only
+      // fail slowly after maxSteinerPerItem of them: name the pair now.
+      if (crossing.empty() && count == options_.nearTouchProbeAfter)
+      {
+        const std::string touching = nearlyTouchingTriangles(key);
+        if (!touching.empty())
+        {
+          result_.error =
+            "could not recover " + name + ": " + touching + " (nearly self-intersecting input)";
+          return false;
+        }
+      }
       if (crossing.empty())
       {
         if (count >= options_.maxSteinerPerItem)

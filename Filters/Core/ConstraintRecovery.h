@@ -44,6 +44,14 @@ struct RecoveryOptions
   // at once naming an intersecting pair, rather than after maxSteinerPerItem points (seconds
   // on a self-intersecting surface). 0: never.
   int intersectionProbeAfter = 0;
+  // For any input: once an item has needed this many Steiner points, look for an input
+  // triangle that comes closer to one of the item's triangles than nearTouchRatio times their
+  // longest edge (floating point distances, boxes first: O(triangles) per item) and fail at
+  // once naming the pair. Such a gap is beyond what Steiner points in doubles can resolve
+  // (a fuzzed cube with a vertex 3e-39 from a face: 64 Steiner points, then failure, 1 s).
+  // 0: never.
+  int nearTouchProbeAfter = 8;
+  double nearTouchRatio = 0x1p-40; // about 9e-13
 };
 
 struct RecoveryResult
