@@ -1,4 +1,5 @@
-// Text reports printed by the command line, and running a VTK filter with its errors caught.
+// The command line's reports of VTK objects (printed by MeshReport.h), and running a VTK
+// filter with its errors caught.
 #pragma once
 
 #include <cstdio>
