@@ -94,98 +94,83 @@ int RunMesh(int argc, char* argv[])
   if (options.withVtk || LowerExtension(options.output) != ".vtu" || !options.background.empty() ||
     (inExt != ".off" && inExt != ".vtp"))
     return MeshWithVtk(options);
-  try
-  {
-    StageClock clock(options.processStart);
-    RequireReadableFile(options.input);
-    SurfaceData surface;
-    if (inExt == ".off")
-      surface = ReadOff(options.input);
-    else if (!ReadVtp(options.input, surface))
-      return MeshWithVtk(options);
-    std::vector<std::int32_t> triangles;
-    std::vector<std::int64_t> cellOfTriangle;
-    if (!Triangles(surface, triangles, cellOfTriangle))
-      return MeshWithVtk(options);
-    clock.Lap("reading");
+  return ReportingFileErrors(
+    [&]
+    {
+      StageClock clock(options.processStart);
+      RequireReadableFile(options.input);
+      SurfaceData surface;
+      if (inExt == ".off")
+        surface = ReadOff(options.input);
+      else if (!ReadVtp(options.input, surface))
+        return MeshWithVtk(options);
+      std::vector<std::int32_t> triangles;
+      std::vector<std::int64_t> cellOfTriangle;
+      if (!Triangles(surface, triangles, cellOfTriangle))
+        return MeshWithVtk(options);
+      clock.Lap("reading");
 
-    SurfaceMeshInput job;
-    job.points = surface.points.data();
-    job.pointCount = static_cast<std::int32_t>(surface.PointCount());
-    job.triangles = triangles.data();
-    job.triangleCount = static_cast<std::int32_t>(triangles.size() / 3);
-    job.cellOfTriangle = cellOfTriangle.data();
-    job.triangleIdsAreNotCellIds = surface.vertexCells + surface.lineCells > 0;
-    job.sizeArrayName = options.size > 0 ? kConstantSizeArray : options.sizeArray;
-    job.readSizeArray = [&](std::vector<double>& sizes)
-    {
-      if (options.size > 0)
+      SurfaceMeshInput job;
+      job.points = surface.points.data();
+      job.pointCount = static_cast<std::int32_t>(surface.PointCount());
+      job.triangles = triangles.data();
+      job.triangleCount = static_cast<std::int32_t>(triangles.size() / 3);
+      job.cellOfTriangle = cellOfTriangle.data();
+      job.triangleIdsAreNotCellIds = surface.vertexCells + surface.lineCells > 0;
+      job.sizeArrayName = options.size > 0 ? kConstantSizeArray : options.sizeArray;
+      job.readSizeArray = [&](std::vector<double>& sizes)
       {
-        sizes.assign(static_cast<std::size_t>(surface.PointCount()), options.size);
-        return true;
-      }
-      for (const PointArray& array : surface.pointArrays)
-      {
-        if (array.name != options.sizeArray)
-          continue;
-        sizes.resize(static_cast<std::size_t>(surface.PointCount()));
-        for (std::size_t p = 0; p < sizes.size(); ++p)
-          sizes[p] = array.values[p * static_cast<std::size_t>(array.components)];
-        return true;
-      }
-      return false;
-    };
-    if (!options.quiet && isatty(STDERR_FILENO))
-    {
-      job.progress = [](double progress)
-      {
-        DrawProgress(progress);
-        return true;
+        if (options.size > 0)
+        {
+          sizes.assign(static_cast<std::size_t>(surface.PointCount()), options.size);
+          return true;
+        }
+        for (const PointArray& array : surface.pointArrays)
+        {
+          if (array.name != options.sizeArray)
+            continue;
+          sizes.resize(static_cast<std::size_t>(surface.PointCount()));
+          for (std::size_t p = 0; p < sizes.size(); ++p)
+            sizes[p] = array.values[p * static_cast<std::size_t>(array.components)];
+          return true;
+        }
+        return false;
       };
-    }
-    const auto start = std::chrono::steady_clock::now();
-    const SurfaceMeshOutput mesh = meshSurface(job, SettingsOf(options));
-    const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!mesh.ok)
-    {
-      std::fprintf(stderr, "tetmesher: %s: %s\n", options.input.c_str(), mesh.error.c_str());
-      return 1;
-    }
-    clock.Add(mesh.stageTimings);
-    WriteVtu(mesh, options.output, options.compress);
-    clock.Lap("writing");
-    auto field = [&mesh](const char* name)
-    {
-      for (const auto& [key, value] : mesh.fieldData)
-        if (key == name)
-          return value;
-      return 0.0;
-    };
-    PrintSummaryLine(options.input,
-      options.output,
-      static_cast<long long>(mesh.cells.size() / 4),
-      static_cast<long long>(mesh.mesh.points.size() / 3),
-      field,
-      seconds);
-    if (options.stats)
-    {
-      PrintQualityReport(
-        stdout, options.output, static_cast<long long>(mesh.mesh.points.size() / 3), field);
-      PrintHistogram(stdout, mesh.quality.histogram);
-    }
-    if (options.timings)
-    {
-      clock.Lap("summary and statistics");
-      clock.Print();
-    }
-  }
-  catch (const FileError& e)
-  {
-    std::fprintf(stderr, "tetmesher: %s\n", e.what());
-    return 1;
-  }
-  return 0;
+      if (!options.quiet && isatty(STDERR_FILENO))
+      {
+        job.progress = [](double progress)
+        {
+          DrawProgress(progress);
+          return true;
+        };
+      }
+      const auto start = std::chrono::steady_clock::now();
+      const SurfaceMeshOutput mesh = meshSurface(job, SettingsOf(options));
+      const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (!mesh.ok)
+      {
+        std::fprintf(stderr, "tetmesher: %s: %s\n", options.input.c_str(), mesh.error.c_str());
+        return 1;
+      }
+      clock.Add(mesh.stageTimings);
+      WriteVtu(mesh, options.output, options.compress);
+      clock.Lap("writing");
+      MeshSummary summary;
+      summary.tetCount = static_cast<long long>(mesh.cells.size() / 4);
+      summary.pointCount = static_cast<long long>(mesh.mesh.points.size() / 3);
+      summary.field = [&mesh](const char* name)
+      {
+        for (const auto& [key, value] : mesh.fieldData)
+          if (key == name)
+            return value;
+        return 0.0;
+      };
+      summary.histogram = mesh.quality.histogram;
+      summary.seconds = seconds;
+      ReportMesh(options, clock, summary);
+      return 0;
+    });
 }
 
 } // namespace cli

@@ -40,104 +40,85 @@ public:
   }
 };
 
-double Field(vtkUnstructuredGrid* mesh, const char* name)
-{
-  vtkDataArray* array = mesh->GetFieldData()->GetArray(name);
-  return array ? array->GetComponent(0, 0) : 0.0;
-}
 } // namespace
 
 int RunMeshWithVtk(const MeshOptions& o)
 {
-  try
-  {
-    StageClock clock(o.processStart);
-    vtkSmartPointer<vtkPolyData> surface = ReadSurface(o.input);
-    clock.Lap("reading");
-    vtkNew<vtkTetMesher> mesher;
-    std::string sizeArray = o.sizeArray;
-    if (o.size > 0)
+  return ReportingFileErrors(
+    [&o]
     {
-      // A constant size is a size array like any other.
-      vtkNew<vtkDoubleArray> constant;
-      constant->SetName(kConstantSizeArray);
-      constant->SetNumberOfTuples(surface->GetNumberOfPoints());
-      constant->Fill(o.size);
-      surface->GetPointData()->AddArray(constant);
-      sizeArray = kConstantSizeArray;
-    }
-    mesher->SetInputData(surface);
-    mesher->SetRefine(!o.boundaryOnly);
-    mesher->SetOptimize(o.optimize && !o.boundaryOnly);
-    mesher->SetSizeScale(o.sizeScale);
-    mesher->SetMinSize(o.minSize);
-    mesher->SetMaxSize(o.maxSize);
-    mesher->SetGradation(o.gradation);
-    mesher->SetOptimizationPasses(o.passes);
-    mesher->SetQualityTarget(o.qualityTarget);
-    mesher->SetDihedralTarget(o.dihedralTarget);
-    mesher->SetTimeLimit(o.timeLimit);
-    mesher->SetMemoryLimit(o.memoryLimit);
-    if (!sizeArray.empty())
-      mesher->SetSizeArrayName(sizeArray.c_str());
-    vtkSmartPointer<vtkDataSet> space;
-    if (!o.background.empty())
-    {
-      space = ReadVolumeMesh(o.background);
-      mesher->SetInputData(1, space);
-      mesher->SetControllingSpaceArrayName(o.backgroundArray.c_str());
-    }
-    mesher->SetEnclosedShellsAreHoles(o.holes);
-    mesher->SetMaximumSteinerPoints(o.maxSteiner);
-    mesher->SetCheckInput(o.check);
-    vtkNew<ProgressBar> bar;
-    if (!o.quiet && isatty(STDERR_FILENO))
-      mesher->AddObserver(vtkCommand::ProgressEvent, bar);
-    clock.Lap("filter set-up");
-    const auto start = std::chrono::steady_clock::now();
-    std::string error = RunFilter(mesher);
-    const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!error.empty())
-    {
-      std::fprintf(stderr, "tetmesher: %s: %s\n", o.input.c_str(), error.c_str());
-      return 1;
-    }
-    vtkUnstructuredGrid* mesh = mesher->GetOutput();
-    {
-      char text[64];
-      std::snprintf(text,
-        sizeof text,
-        "%.4f\tpipeline overhead\n",
-        seconds - SumSeconds(mesher->GetStageTimings()));
-      clock.Add(mesher->GetStageTimings() + std::string(text));
-    }
-    WriteVolumeMesh(mesh, o.output, o.compress);
-    clock.Lap("writing");
-    auto field = [mesh](const char* name) { return Field(mesh, name); };
-    PrintSummaryLine(o.input,
-      o.output,
-      static_cast<long long>(mesh->GetNumberOfCells()),
-      static_cast<long long>(mesh->GetNumberOfPoints()),
-      field,
-      seconds);
-    if (o.stats)
-    {
-      PrintQualityReport(stdout, o.output, mesh);
-      PrintHistogram(stdout, mesher->GetHistogramOutput());
-    }
-    if (o.timings)
-    {
-      clock.Lap("summary and statistics");
-      clock.Print();
-    }
-  }
-  catch (const FileError& e)
-  {
-    std::fprintf(stderr, "tetmesher: %s\n", e.what());
-    return 1;
-  }
-  return 0;
+      StageClock clock(o.processStart);
+      vtkSmartPointer<vtkPolyData> surface = ReadSurface(o.input);
+      clock.Lap("reading");
+      vtkNew<vtkTetMesher> mesher;
+      std::string sizeArray = o.sizeArray;
+      if (o.size > 0)
+      {
+        // A constant size is a size array like any other.
+        vtkNew<vtkDoubleArray> constant;
+        constant->SetName(kConstantSizeArray);
+        constant->SetNumberOfTuples(surface->GetNumberOfPoints());
+        constant->Fill(o.size);
+        surface->GetPointData()->AddArray(constant);
+        sizeArray = kConstantSizeArray;
+      }
+      mesher->SetInputData(surface);
+      mesher->SetRefine(!o.boundaryOnly);
+      mesher->SetOptimize(o.optimize && !o.boundaryOnly);
+      mesher->SetSizeScale(o.sizeScale);
+      mesher->SetMinSize(o.minSize);
+      mesher->SetMaxSize(o.maxSize);
+      mesher->SetGradation(o.gradation);
+      mesher->SetOptimizationPasses(static_cast<int>(o.passes));
+      mesher->SetQualityTarget(o.qualityTarget);
+      mesher->SetDihedralTarget(o.dihedralTarget);
+      mesher->SetTimeLimit(o.timeLimit);
+      mesher->SetMemoryLimit(o.memoryLimit);
+      if (!sizeArray.empty())
+        mesher->SetSizeArrayName(sizeArray.c_str());
+      vtkSmartPointer<vtkDataSet> space;
+      if (!o.background.empty())
+      {
+        space = ReadVolumeMesh(o.background);
+        mesher->SetInputData(1, space);
+        mesher->SetControllingSpaceArrayName(o.backgroundArray.c_str());
+      }
+      mesher->SetEnclosedShellsAreHoles(o.holes);
+      mesher->SetMaximumSteinerPoints(o.maxSteiner);
+      mesher->SetCheckInput(o.check);
+      vtkNew<ProgressBar> bar;
+      if (!o.quiet && isatty(STDERR_FILENO))
+        mesher->AddObserver(vtkCommand::ProgressEvent, bar);
+      clock.Lap("filter set-up");
+      const auto start = std::chrono::steady_clock::now();
+      std::string error = RunFilter(mesher);
+      const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (!error.empty())
+      {
+        std::fprintf(stderr, "tetmesher: %s: %s\n", o.input.c_str(), error.c_str());
+        return 1;
+      }
+      vtkUnstructuredGrid* mesh = mesher->GetOutput();
+      {
+        char text[64];
+        std::snprintf(text,
+          sizeof text,
+          "%.4f\tpipeline overhead\n",
+          seconds - SumSeconds(mesher->GetStageTimings()));
+        clock.Add(mesher->GetStageTimings() + std::string(text));
+      }
+      WriteVolumeMesh(mesh, o.output, o.compress);
+      clock.Lap("writing");
+      MeshSummary summary;
+      summary.tetCount = static_cast<long long>(mesh->GetNumberOfCells());
+      summary.pointCount = static_cast<long long>(mesh->GetNumberOfPoints());
+      summary.field = [mesh](const char* name) { return FieldValue(mesh, name); };
+      summary.histogram = HistogramCounts(mesher->GetHistogramOutput());
+      summary.seconds = seconds;
+      ReportMesh(o, clock, summary);
+      return 0;
+    });
 }
 
 } // namespace cli

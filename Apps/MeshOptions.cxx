@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 
 namespace tetmesher
 {
@@ -53,91 +54,95 @@ options:
   -q, --quiet           no progress bar
   -h, --help            this text
 )";
+// The options by kind: flags set a field, the others take the next argument.
+struct Flag
+{
+  const char* name;
+  bool MeshOptions::*field;
+  bool value;
+};
+const Flag kFlags[] = { { "--boundary-only", &MeshOptions::boundaryOnly, true },
+  { "--no-optimize", &MeshOptions::optimize, false },
+  { "--with-vtk", &MeshOptions::withVtk, true },
+  { "--stats", &MeshOptions::stats, true },
+  { "--timings", &MeshOptions::timings, true },
+  { "--compress", &MeshOptions::compress, true },
+  { "--holes", &MeshOptions::holes, true },
+  { "--no-check", &MeshOptions::check, false },
+  { "-q", &MeshOptions::quiet, true },
+  { "--quiet", &MeshOptions::quiet, true } };
+
+struct Text
+{
+  const char* name;
+  std::string MeshOptions::*field;
+};
+const Text kTexts[] = { { "-o", &MeshOptions::output },
+  { "--output", &MeshOptions::output },
+  { "--size-array", &MeshOptions::sizeArray },
+  { "--background", &MeshOptions::background },
+  { "--background-array", &MeshOptions::backgroundArray } };
+
+// A number from `low` up; larger than `high` counts as `high`.
+struct Number
+{
+  const char* name;
+  double MeshOptions::*field;
+  double low, high;
+};
+constexpr double kNoBound = std::numeric_limits<double>::infinity();
+const Number kNumbers[] = { { "--size", &MeshOptions::size, 1e-300, kNoBound },
+  { "--size-scale", &MeshOptions::sizeScale, 1e-300, kNoBound },
+  { "--min-size", &MeshOptions::minSize, 0, kNoBound },
+  { "--max-size", &MeshOptions::maxSize, 0, kNoBound },
+  { "--gradation", &MeshOptions::gradation, 0, kNoBound },
+  { "--quality-target", &MeshOptions::qualityTarget, 0, 1 },
+  { "--passes", &MeshOptions::passes, 0, 100 },
+  { "--dihedral-target", &MeshOptions::dihedralTarget, 0, 70 },
+  { "--time-limit", &MeshOptions::timeLimit, 0, kNoBound },
+  { "--memory-limit", &MeshOptions::memoryLimit, -1, kNoBound } };
+
+template<typename Option, std::size_t N>
+const Option* Find(const Option (&options)[N], const std::string& name)
+{
+  for (const Option& option : options)
+    if (name == option.name)
+      return &option;
+  return nullptr;
+}
 } // namespace
 
 int ParseMeshOptions(int argc, char* argv[], MeshOptions& o)
 {
-  // Parses the number after option argv[i]; false (and a message) when it is not one.
-  auto number = [&](int& i, double low, double& value)
-  {
-    char* end = nullptr;
-    const char* text = argv[i + 1];
-    value = std::strtod(text, &end);
-    if (*end != '\0' || end == text || !(value >= low) || !std::isfinite(value))
-    {
-      std::fprintf(
-        stderr, "tetmesher mesh: %s wants a number >= %g, not '%s'\n", argv[i], low, text);
-      return false;
-    }
-    ++i;
-    return true;
-  };
   for (int i = 0; i < argc; ++i)
   {
     std::string arg = argv[i];
+    const bool hasValue = i + 1 < argc;
     if (arg == "-h" || arg == "--help")
     {
       std::fputs(kMeshUsage, stdout);
       return 0;
     }
-    if ((arg == "-o" || arg == "--output") && i + 1 < argc)
-      o.output = argv[++i];
-    else if (arg == "--boundary-only")
-      o.boundaryOnly = true;
-    else if (arg == "--no-optimize")
-      o.optimize = false;
-    else if (arg == "--size-array" && i + 1 < argc)
-      o.sizeArray = argv[++i];
-    else if (arg == "--background" && i + 1 < argc)
-      o.background = argv[++i];
-    else if (arg == "--background-array" && i + 1 < argc)
-      o.backgroundArray = argv[++i];
-    else if (i + 1 < argc &&
-      (arg == "--size" || arg == "--size-scale" || arg == "--min-size" || arg == "--max-size" ||
-        arg == "--gradation" || arg == "--quality-target" || arg == "--passes" ||
-        arg == "--dihedral-target" || arg == "--time-limit" || arg == "--memory-limit"))
+    if (const Flag* flag = Find(kFlags, arg))
+      o.*(flag->field) = flag->value;
+    else if (const Text* text = hasValue ? Find(kTexts, arg) : nullptr)
+      o.*(text->field) = argv[++i];
+    else if (const Number* number = hasValue ? Find(kNumbers, arg) : nullptr)
     {
-      double value = 0;
-      const double low = arg == "--size" || arg == "--size-scale" ? 1e-300
-        : arg == "--memory-limit"                                 ? -1.0
-                                                                  : 0.0;
-      if (!number(i, low, value))
+      char* end = nullptr;
+      const char* text = argv[++i];
+      const double value = std::strtod(text, &end);
+      if (*end != '\0' || end == text || !(value >= number->low) || !std::isfinite(value))
+      {
+        std::fprintf(stderr,
+          "tetmesher mesh: %s wants a number >= %g, not '%s'\n",
+          arg.c_str(),
+          number->low,
+          text);
         return 2;
-      if (arg == "--size")
-        o.size = value;
-      else if (arg == "--size-scale")
-        o.sizeScale = value;
-      else if (arg == "--min-size")
-        o.minSize = value;
-      else if (arg == "--max-size")
-        o.maxSize = value;
-      else if (arg == "--gradation")
-        o.gradation = value;
-      else if (arg == "--time-limit")
-        o.timeLimit = value;
-      else if (arg == "--memory-limit")
-        o.memoryLimit = value;
-      else if (arg == "--dihedral-target")
-        o.dihedralTarget = std::min(value, 70.0);
-      else if (arg == "--quality-target")
-        o.qualityTarget = std::min(value, 1.0);
-      else
-        o.passes = static_cast<int>(std::min(value, 100.0));
+      }
+      o.*(number->field) = std::min(value, number->high);
     }
-    else if (arg == "--with-vtk")
-      o.withVtk = true;
-    else if (arg == "--stats")
-      o.stats = true;
-    else if (arg == "--timings")
-      o.timings = true;
-    else if (arg == "--compress")
-      o.compress = true;
-    else if (arg == "--holes")
-      o.holes = true;
-    else if (arg == "--no-check")
-      o.check = false;
-    else if (arg == "-q" || arg == "--quiet")
-      o.quiet = true;
     else if (arg == "--max-steiner" && i + 1 < argc)
     {
       char* end = nullptr;
@@ -196,7 +201,7 @@ SurfaceMeshSettings SettingsOf(const MeshOptions& o)
   settings.maxSize = o.maxSize;
   settings.gradation = o.gradation;
   settings.optimize = o.optimize && !o.boundaryOnly;
-  settings.optimizationPasses = o.passes;
+  settings.optimizationPasses = static_cast<int>(o.passes);
   settings.qualityTarget = o.qualityTarget;
   settings.dihedralTarget = o.dihedralTarget;
   settings.timeLimit = o.timeLimit;

@@ -19,7 +19,8 @@ struct MeshOptions
   bool stats = false, timings = false, compress = false, holes = false, check = true, quiet = false,
        boundaryOnly = false, optimize = true;
   bool withVtk = false; // --with-vtk: through vtkTetMesher and VTK's readers and writers
-  int maxSteiner = -1, passes = 3;
+  int maxSteiner = -1;
+  double passes = 3; // an integer; parsed as the other numbers
   double timeLimit = 0, memoryLimit = 0, dihedralTarget = 25, size = 0, sizeScale = 1, minSize = 0,
          maxSize = 0, gradation = 1.5, qualityTarget = 0.35;
   std::string sizeArray, background, backgroundArray = "h";

@@ -1,5 +1,8 @@
 #include "MeshReport.h"
 
+#include "MeshOptions.h"
+#include "SurfaceFiles.h"
+
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
@@ -22,6 +25,9 @@ void DrawProgress(double progress)
     std::fputs("\r\033[K", stderr);
 }
 
+namespace
+{
+// "IN -> OUT: N tetrahedra, M points (...), R regions, Q min ... mean ..., S s".
 void PrintSummaryLine(const std::string& input,
   const std::string& output,
   long long tetCount,
@@ -43,6 +49,7 @@ void PrintSummaryLine(const std::string& input,
     field("QualityMean"),
     seconds);
 }
+} // namespace
 
 void PrintQualityReport(std::FILE* out,
   const std::string& name,
@@ -160,6 +167,39 @@ void StageClock::Print() const
     c = end + 1;
   }
   std::printf("  %8.4f  total after main\n", total);
+}
+
+void ReportMesh(const MeshOptions& options, StageClock& clock, const MeshSummary& summary)
+{
+  PrintSummaryLine(options.input,
+    options.output,
+    summary.tetCount,
+    summary.pointCount,
+    summary.field,
+    summary.seconds);
+  if (options.stats)
+  {
+    PrintQualityReport(stdout, options.output, summary.pointCount, summary.field);
+    PrintHistogram(stdout, summary.histogram);
+  }
+  if (options.timings)
+  {
+    clock.Lap("summary and statistics");
+    clock.Print();
+  }
+}
+
+int ReportingFileErrors(const std::function<int()>& command)
+{
+  try
+  {
+    return command();
+  }
+  catch (const FileError& e)
+  {
+    std::fprintf(stderr, "tetmesher: %s\n", e.what());
+    return 1;
+  }
 }
 
 void* LoadModule(const char* fileName)

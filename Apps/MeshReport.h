@@ -21,14 +21,6 @@ using FieldLookup = std::function<double(const char*)>;
 // Redraws the progress bar on stderr (the caller checks that stderr is a terminal).
 void DrawProgress(double progress);
 
-// "IN -> OUT: N tetrahedra, M points (...), R regions, Q min ... mean ..., S s".
-void PrintSummaryLine(const std::string& input,
-  const std::string& output,
-  long long tetCount,
-  long long pointCount,
-  const FieldLookup& field,
-  double seconds);
-
 // "NAME: N tetrahedra, M points" and the quality summary from the field data.
 void PrintQualityReport(std::FILE* out,
   const std::string& name,
@@ -63,6 +55,25 @@ private:
 
 // The sum of the first numbers of the lines "seconds<TAB>stage".
 double SumSeconds(const char* lines);
+
+struct MeshOptions;
+
+// What a `mesh` run reports, whichever path made the mesh.
+struct MeshSummary
+{
+  long long tetCount = 0;
+  long long pointCount = 0;
+  FieldLookup field; // the mesh's field data
+  std::vector<std::int64_t> histogram;
+  double seconds = 0; // of the meshing
+};
+
+// The end of a `mesh` run, the same on both paths: the one-line summary, then the quality
+// report and histogram (--stats) and the timings (--timings) when asked for.
+void ReportMesh(const MeshOptions& options, StageClock& clock, const MeshSummary& summary);
+
+// Runs a command; a FileError it throws becomes "tetmesher: MESSAGE" and exit status 1.
+int ReportingFileErrors(const std::function<int()>& command);
 
 // dlopen of one of tetmesher's modules (RTLD_NOW | RTLD_LOCAL), by its path in the library
 // directory next to the executable (bin/../lib), else by name through the RUNPATH. The path

@@ -39,11 +39,6 @@ public:
   std::string Text;
 };
 
-double Field(vtkDataSet* mesh, const char* name)
-{
-  vtkDataArray* array = mesh->GetFieldData()->GetArray(name);
-  return array ? array->GetComponent(0, 0) : 0.0;
-}
 } // namespace
 
 std::string RunFilter(vtkAlgorithm* filter)
@@ -60,23 +55,27 @@ std::string RunFilter(vtkAlgorithm* filter)
   return errors->Text;
 }
 
+double FieldValue(vtkDataSet* mesh, const char* name)
+{
+  vtkDataArray* array = mesh->GetFieldData()->GetArray(name);
+  return array ? array->GetComponent(0, 0) : 0.0;
+}
+
 void PrintQualityReport(std::FILE* out, const std::string& name, vtkDataSet* mesh)
 {
   PrintQualityReport(out,
     name,
     static_cast<long long>(mesh->GetNumberOfPoints()),
-    [mesh](const char* field) { return Field(mesh, field); });
+    [mesh](const char* field) { return FieldValue(mesh, field); });
 }
 
-void PrintHistogram(std::FILE* out, vtkTable* histogram)
+std::vector<std::int64_t> HistogramCounts(vtkTable* histogram)
 {
-  vtkDataArray* count = vtkDataArray::SafeDownCast(histogram->GetColumnByName("Count"));
-  if (!count)
-    return;
   std::vector<std::int64_t> counts;
-  for (vtkIdType i = 0; i < count->GetNumberOfTuples(); ++i)
+  vtkDataArray* count = vtkDataArray::SafeDownCast(histogram->GetColumnByName("Count"));
+  for (vtkIdType i = 0; count && i < count->GetNumberOfTuples(); ++i)
     counts.push_back(static_cast<std::int64_t>(count->GetComponent(i, 0)));
-  PrintHistogram(out, counts);
+  return counts;
 }
 } // namespace cli
 } // namespace tetmesher

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <memory>
 #include <sys/stat.h>
+#include <type_traits>
 
 namespace tetmesher
 {
@@ -176,21 +177,17 @@ struct Tag
 bool ParseTag(const std::string& text, std::size_t& pos, Tag& tag)
 {
   tag = Tag();
-  if (text.compare(pos, 4, "<!--") == 0)
+  const std::pair<const char*, const char*> skipped[] = { { "<!--", "-->" }, { "<?", "?>" } };
+  for (const auto& [open, close] : skipped)
   {
-    const std::size_t end = text.find("-->", pos);
-    if (end == std::string::npos)
-      return false;
-    pos = end + 3;
-    return true;
-  }
-  if (text.compare(pos, 2, "<?") == 0)
-  {
-    const std::size_t end = text.find("?>", pos);
-    if (end == std::string::npos)
-      return false;
-    pos = end + 2;
-    return true;
+    if (text.compare(pos, std::strlen(open), open) == 0)
+    {
+      const std::size_t end = text.find(close, pos);
+      if (end == std::string::npos)
+        return false;
+      pos = end + std::strlen(close);
+      return true;
+    }
   }
   std::size_t i = pos + 1;
   if (i < text.size() && text[i] == '/')
@@ -284,58 +281,6 @@ bool ParseTag(const std::string& text, std::size_t& pos, Tag& tag)
   return true;
 }
 
-enum class Scalar
-{
-  Int8,
-  UInt8,
-  Int16,
-  UInt16,
-  Int32,
-  UInt32,
-  Int64,
-  UInt64,
-  Float32,
-  Float64,
-  Unknown
-};
-
-Scalar ScalarOf(const std::string& type)
-{
-  static const std::pair<const char*, Scalar> names[] = { { "Int8", Scalar::Int8 },
-    { "UInt8", Scalar::UInt8 },
-    { "Int16", Scalar::Int16 },
-    { "UInt16", Scalar::UInt16 },
-    { "Int32", Scalar::Int32 },
-    { "UInt32", Scalar::UInt32 },
-    { "Int64", Scalar::Int64 },
-    { "UInt64", Scalar::UInt64 },
-    { "Float32", Scalar::Float32 },
-    { "Float64", Scalar::Float64 } };
-  for (const auto& [name, scalar] : names)
-    if (type == name)
-      return scalar;
-  return Scalar::Unknown;
-}
-
-std::size_t SizeOf(Scalar s)
-{
-  switch (s)
-  {
-    case Scalar::Int8:
-    case Scalar::UInt8:
-      return 1;
-    case Scalar::Int16:
-    case Scalar::UInt16:
-      return 2;
-    case Scalar::Int32:
-    case Scalar::UInt32:
-    case Scalar::Float32:
-      return 4;
-    default:
-      return 8;
-  }
-}
-
 template<typename T>
 T Load(const unsigned char* bytes)
 {
@@ -344,34 +289,54 @@ T Load(const unsigned char* bytes)
   return value;
 }
 
-// Value i of little-endian binary data as double, or as a 64-bit integer.
-template<typename Out>
-Out ValueAt(const unsigned char* data, Scalar type, std::size_t i)
+// A type of stored values: its name in the file, its size, and how to read one value
+// (little-endian) as double or as a 64-bit integer.
+struct Scalar
 {
-  const unsigned char* at = data + i * SizeOf(type);
-  switch (type)
-  {
-    case Scalar::Int8:
-      return static_cast<Out>(Load<std::int8_t>(at));
-    case Scalar::UInt8:
-      return static_cast<Out>(Load<std::uint8_t>(at));
-    case Scalar::Int16:
-      return static_cast<Out>(Load<std::int16_t>(at));
-    case Scalar::UInt16:
-      return static_cast<Out>(Load<std::uint16_t>(at));
-    case Scalar::Int32:
-      return static_cast<Out>(Load<std::int32_t>(at));
-    case Scalar::UInt32:
-      return static_cast<Out>(Load<std::uint32_t>(at));
-    case Scalar::Int64:
-      return static_cast<Out>(Load<std::int64_t>(at));
-    case Scalar::UInt64:
-      return static_cast<Out>(Load<std::uint64_t>(at));
-    case Scalar::Float32:
-      return static_cast<Out>(Load<float>(at));
-    default:
-      return static_cast<Out>(Load<double>(at));
-  }
+  const char* name;
+  std::size_t size;
+  double (*asDouble)(const unsigned char*);
+  std::int64_t (*asInteger)(const unsigned char*);
+  bool real;
+};
+
+template<typename T>
+constexpr Scalar Describe(const char* name)
+{
+  return { name,
+    sizeof(T),
+    [](const unsigned char* bytes) { return static_cast<double>(Load<T>(bytes)); },
+    [](const unsigned char* bytes) { return static_cast<std::int64_t>(Load<T>(bytes)); },
+    std::is_floating_point<T>::value };
+}
+
+const Scalar kScalars[] = { Describe<std::int8_t>("Int8"),
+  Describe<std::uint8_t>("UInt8"),
+  Describe<std::int16_t>("Int16"),
+  Describe<std::uint16_t>("UInt16"),
+  Describe<std::int32_t>("Int32"),
+  Describe<std::uint32_t>("UInt32"),
+  Describe<std::int64_t>("Int64"),
+  Describe<std::uint64_t>("UInt64"),
+  Describe<float>("Float32"),
+  Describe<double>("Float64") };
+
+// The type named `type`, or null.
+const Scalar* ScalarOf(const std::string& type)
+{
+  for (const Scalar& scalar : kScalars)
+    if (type == scalar.name)
+      return &scalar;
+  return nullptr;
+}
+
+void Convert(const Scalar& type, const unsigned char* bytes, double& value)
+{
+  value = type.asDouble(bytes);
+}
+void Convert(const Scalar& type, const unsigned char* bytes, std::int64_t& value)
+{
+  value = type.asInteger(bytes);
 }
 
 int Base64Value(char c)
@@ -539,7 +504,7 @@ bool ReadBinary(const Encoding& encoding,
 struct ArrayRef
 {
   Tag tag;
-  Scalar type = Scalar::Unknown;
+  const Scalar* type = nullptr;
   int components = 1;
 };
 
@@ -559,14 +524,14 @@ bool ReadArray(const Encoding& encoding,
       return false;
     // Numbers separated by white space until the next tag.
     const char* c = text.c_str() + array.tag.contentStart;
-    const bool real = array.type == Scalar::Float32 || array.type == Scalar::Float64;
+    const bool real = array.type->real;
+    const bool single = array.type->size == 4;
     for (std::size_t i = 0; i < count; ++i)
     {
       char* end = nullptr;
       if (real)
       {
-        const double x =
-          array.type == Scalar::Float32 ? std::strtof(c, &end) : std::strtod(c, &end);
+        const double x = single ? std::strtof(c, &end) : std::strtod(c, &end);
         values[i] = static_cast<Out>(x);
       }
       else
@@ -578,7 +543,7 @@ bool ReadArray(const Encoding& encoding,
     return true;
   }
   std::vector<unsigned char> bytes;
-  const std::size_t expected = count * SizeOf(array.type);
+  const std::size_t expected = count * array.type->size;
   if (*format == "binary")
   {
     if (!ReadBinary(
@@ -606,7 +571,7 @@ bool ReadArray(const Encoding& encoding,
   else
     return false;
   for (std::size_t i = 0; i < count; ++i)
-    values[i] = ValueAt<Out>(bytes.data(), array.type, i);
+    Convert(*array.type, bytes.data() + i * array.type->size, values[i]);
   return true;
 }
 
@@ -717,17 +682,17 @@ bool ReadVtp(const std::string& path, SurfaceData& surface)
       ArrayRef array;
       array.tag = tag;
       const std::string* type = tag.Attribute("type");
-      array.type = type ? ScalarOf(*type) : Scalar::Unknown;
+      array.type = type ? ScalarOf(*type) : nullptr;
       if (const std::string* components = tag.Attribute("NumberOfComponents"))
         array.components = std::atoi(components->c_str());
       const std::string& section = open.back();
       const std::string* name = tag.Attribute("Name");
       if (section == "PointData")
       {
-        if (array.type != Scalar::Unknown && array.components >= 1 && name)
+        if (array.type && array.components >= 1 && name)
           pointArrays.push_back(array);
       }
-      else if (array.type == Scalar::Unknown || array.components < 1)
+      else if (!array.type || array.components < 1)
       {
         if (section != "CellData" && section != "FieldData")
           return false;
@@ -757,7 +722,7 @@ bool ReadVtp(const std::string& path, SurfaceData& surface)
     !ParseCount(piece, "NumberOfStrips", surface.stripCells) ||
     !ParseCount(piece, "NumberOfPolys", polyCount))
     return false;
-  if (pointCount == 0 || points.type == Scalar::Unknown || points.components != 3 ||
+  if (pointCount == 0 || !points.type || points.components != 3 ||
     !ReadArray(encoding, points, static_cast<std::size_t>(pointCount), surface.points))
     return false;
   // The vertex, line and strip cells only shift the input cell ids of the polygons.
@@ -767,7 +732,7 @@ bool ReadVtp(const std::string& path, SurfaceData& surface)
          std::make_pair(surface.stripCells, &stripsOffsets) })
   {
     if (count > 0 &&
-      (offsets->type == Scalar::Unknown || offsets->components != 1 ||
+      (!offsets->type || offsets->components != 1 ||
         !ReadArray(encoding, *offsets, static_cast<std::size_t>(count), ends)))
       return false;
   }
@@ -775,8 +740,8 @@ bool ReadVtp(const std::string& path, SurfaceData& surface)
   surface.polygonPoints.clear();
   if (polyCount > 0)
   {
-    if (polysOffsets.type == Scalar::Unknown || polysConnectivity.type == Scalar::Unknown ||
-      polysOffsets.components != 1 || polysConnectivity.components != 1 ||
+    if (!polysOffsets.type || !polysConnectivity.type || polysOffsets.components != 1 ||
+      polysConnectivity.components != 1 ||
       !ReadArray(encoding, polysOffsets, static_cast<std::size_t>(polyCount), ends))
       return false;
     // Offsets are the ends of the cells (files before version 2): increasing, the last one

@@ -45,15 +45,14 @@ bool ComputeTetQuality(vtkDataSet* input,
     for (int i = 0; i < 4; ++i)
       cells[static_cast<std::size_t>(4 * c + i)] = ids->GetId(i);
   }
-  return measureMesh(points.data(),
-    pointCount,
-    cells.data(),
-    cellCount,
-    size ? sizes.data() : nullptr,
-    size && size->GetName() ? size->GetName() : "",
-    binCount,
-    result,
-    error);
+  TetMeshView view;
+  view.points = points.data();
+  view.pointCount = pointCount;
+  view.cells = cells.data();
+  view.cellCount = cellCount;
+  view.sizes = size ? sizes.data() : nullptr;
+  view.sizeName = size && size->GetName() ? size->GetName() : "";
+  return measureMesh(view, binCount, result, error);
 }
 
 namespace

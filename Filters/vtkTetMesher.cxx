@@ -192,10 +192,74 @@ private:
   std::vector<double> Weights;
 };
 
+// One property and its field of the core's settings, copied one way or the other.
+template<typename Get, typename Set, typename T>
+void Exchange(vtkTetMesher* filter,
+  tetmesher::SurfaceMeshSettings& settings,
+  bool toFilter,
+  Get get,
+  Set set,
+  T tetmesher::SurfaceMeshSettings::*field)
+{
+  if (toFilter)
+    (filter->*set)(settings.*field);
+  else
+    settings.*field = (filter->*get)();
+}
+
+// The filter's properties that are the core job's settings, in one list for both directions:
+// the constructor takes the core's defaults, RequestData hands the properties to the core.
+void ExchangeSettings(vtkTetMesher* f, tetmesher::SurfaceMeshSettings& s, bool toFilter)
+{
+  using M = vtkTetMesher;
+  using S = tetmesher::SurfaceMeshSettings;
+  Exchange(f, s, toFilter, &M::GetCheckInput, &M::SetCheckInput, &S::checkInput);
+  Exchange(f,
+    s,
+    toFilter,
+    &M::GetEnclosedShellsAreHoles,
+    &M::SetEnclosedShellsAreHoles,
+    &S::enclosedShellsAreHoles);
+  Exchange(f,
+    s,
+    toFilter,
+    &M::GetMaximumSteinerPoints,
+    &M::SetMaximumSteinerPoints,
+    &S::maximumSteinerPoints);
+  Exchange(f,
+    s,
+    toFilter,
+    &M::GetRemoveSteinerPoints,
+    &M::SetRemoveSteinerPoints,
+    &S::removeSteinerPoints);
+  Exchange(f, s, toFilter, &M::GetRefine, &M::SetRefine, &S::refine);
+  Exchange(f, s, toFilter, &M::GetSizeScale, &M::SetSizeScale, &S::sizeScale);
+  Exchange(f, s, toFilter, &M::GetMinSize, &M::SetMinSize, &S::minSize);
+  Exchange(f, s, toFilter, &M::GetMaxSize, &M::SetMaxSize, &S::maxSize);
+  Exchange(f, s, toFilter, &M::GetGradation, &M::SetGradation, &S::gradation);
+  Exchange(
+    f, s, toFilter, &M::GetInterpolationPower, &M::SetInterpolationPower, &S::interpolationPower);
+  Exchange(f, s, toFilter, &M::GetOptimize, &M::SetOptimize, &S::optimize);
+  Exchange(
+    f, s, toFilter, &M::GetOptimizationPasses, &M::SetOptimizationPasses, &S::optimizationPasses);
+  Exchange(f, s, toFilter, &M::GetQualityTarget, &M::SetQualityTarget, &S::qualityTarget);
+  Exchange(f, s, toFilter, &M::GetDihedralTarget, &M::SetDihedralTarget, &S::dihedralTarget);
+  Exchange(f, s, toFilter, &M::GetTimeLimit, &M::SetTimeLimit, &S::timeLimit);
+  Exchange(f, s, toFilter, &M::GetMemoryLimit, &M::SetMemoryLimit, &S::memoryLimit);
+  Exchange(f, s, toFilter, &M::GetNumberOfBins, &M::SetNumberOfBins, &S::numberOfBins);
+  if (toFilter)
+    f->SetQualityMeasure(
+      s.measure == tetmesher::QualityMeasure::MinDihedral ? M::MIN_DIHEDRAL : M::PAPER_Q);
+  else
+    s.measure = f->GetQualityMeasure() == M::MIN_DIHEDRAL ? tetmesher::QualityMeasure::MinDihedral
+                                                          : tetmesher::QualityMeasure::PaperQ;
+}
 } // namespace
 
 vtkTetMesher::vtkTetMesher()
 {
+  tetmesher::SurfaceMeshSettings defaults;
+  ExchangeSettings(this, defaults, true);
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(3);
   this->SetControllingSpaceArrayName("h");
@@ -418,25 +482,7 @@ int vtkTetMesher::RequestData(vtkInformation*,
     return !this->GetAbortExecute();
   };
   tetmesher::SurfaceMeshSettings settings;
-  settings.checkInput = this->CheckInput;
-  settings.enclosedShellsAreHoles = this->EnclosedShellsAreHoles;
-  settings.maximumSteinerPoints = this->MaximumSteinerPoints;
-  settings.removeSteinerPoints = this->RemoveSteinerPoints;
-  settings.refine = this->Refine;
-  settings.sizeScale = this->SizeScale;
-  settings.minSize = this->MinSize;
-  settings.maxSize = this->MaxSize;
-  settings.gradation = this->Gradation;
-  settings.interpolationPower = this->InterpolationPower;
-  settings.optimize = this->Optimize;
-  settings.optimizationPasses = this->OptimizationPasses;
-  settings.qualityTarget = this->QualityTarget;
-  settings.dihedralTarget = this->DihedralTarget;
-  settings.measure = this->QualityMeasure == MIN_DIHEDRAL ? tetmesher::QualityMeasure::MinDihedral
-                                                          : tetmesher::QualityMeasure::PaperQ;
-  settings.timeLimit = this->TimeLimit;
-  settings.memoryLimit = this->MemoryLimit;
-  settings.numberOfBins = this->NumberOfBins;
+  ExchangeSettings(this, settings, false);
   defects->Initialize();
   const tetmesher::SurfaceMeshOutput result = tetmesher::meshSurface(job, settings);
   this->StageTimings += result.stageTimings;

@@ -183,15 +183,12 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
   lap("output conversion");
 
   std::string qualityError;
-  if (!measureMesh(result.points.data(),
-        static_cast<std::int64_t>(result.points.size() / 3),
-        out.cells.data(),
-        static_cast<std::int64_t>(tetCount),
-        nullptr,
-        "",
-        settings.numberOfBins,
-        out.quality,
-        qualityError))
+  TetMeshView view;
+  view.points = result.points.data();
+  view.pointCount = static_cast<std::int64_t>(result.points.size() / 3);
+  view.cells = out.cells.data();
+  view.cellCount = static_cast<std::int64_t>(tetCount);
+  if (!measureMesh(view, settings.numberOfBins, out.quality, qualityError))
   {
     return fail("quality of the result: " + qualityError);
   }

@@ -215,19 +215,12 @@ std::vector<std::pair<const char*, double>> qualitySummaryFields(const QualitySu
     { "MaxDihedralAngle", summary.maxDihedral } };
 }
 
-bool measureMesh(const double* points,
-  std::int64_t pointCount,
-  const std::int64_t* cells,
-  std::int64_t cellCount,
-  const double* sizes,
-  const std::string& sizeName,
-  int binCount,
-  MeshQuality& result,
-  std::string& error)
+bool measureMesh(const TetMeshView& mesh, int binCount, MeshQuality& result, std::string& error)
 {
-  for (std::int64_t p = 0; p < pointCount; ++p)
+  const double* sizes = mesh.sizes;
+  for (std::int64_t p = 0; p < mesh.pointCount; ++p)
   {
-    const double* x = points + 3 * p;
+    const double* x = mesh.points + 3 * p;
     if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
     {
       std::ostringstream message;
@@ -239,14 +232,14 @@ bool measureMesh(const double* points,
     if (sizes && (!(sizes[p] > 0) || !std::isfinite(sizes[p])))
     {
       std::ostringstream message;
-      message << "size array '" << sizeName << "' has the invalid value " << sizes[p]
+      message << "size array '" << mesh.sizeName << "' has the invalid value " << sizes[p]
               << " at point " << p << " (sizes must be finite and > 0)";
       error = message.str();
       return false;
     }
   }
 
-  const auto count = static_cast<std::size_t>(cellCount);
+  const auto count = static_cast<std::size_t>(mesh.cellCount);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   result.quality.assign(count, nan);
   result.minDihedral.assign(count, nan);
@@ -255,14 +248,14 @@ bool measureMesh(const double* points,
   shapes.reserve(count);
   for (std::size_t c = 0; c < count; ++c)
   {
-    const std::int64_t* ids = cells + 4 * c;
+    const std::int64_t* ids = mesh.cells + 4 * c;
     if (ids[0] < 0)
       continue;
     const double* x[4];
     double h[4] = { 1, 1, 1, 1 };
     for (int i = 0; i < 4; ++i)
     {
-      x[i] = points + 3 * ids[i];
+      x[i] = mesh.points + 3 * ids[i];
       if (sizes)
         h[i] = sizes[ids[i]];
     }
@@ -276,7 +269,8 @@ bool measureMesh(const double* points,
   if (shapes.empty())
   {
     std::ostringstream message;
-    message << "the input has no tetrahedra (" << cellCount << " cells, none of type VTK_TETRA)";
+    message << "the input has no tetrahedra (" << mesh.cellCount
+            << " cells, none of type VTK_TETRA)";
     error = message.str();
     return false;
   }

@@ -83,18 +83,21 @@ struct MeshQuality
   std::vector<std::int64_t> histogram;
 };
 
-// Measures every tetrahedron of a mesh. cells[4c..4c+3] are the point ids of cell c in VTK
-// order, cells[4c] < 0 for a cell that is not a tetrahedron. `sizes` (optional) is h > 0 per
-// point, named `sizeName` in errors. Returns false with `error` naming the defect (no
+// A mesh to measure: cells[4c..4c+3] are the point ids of cell c in VTK order, cells[4c] < 0
+// for a cell that is not a tetrahedron. `sizes` (optional) is h > 0 per point, named
+// `sizeName` in errors.
+struct TetMeshView
+{
+  const double* points = nullptr;
+  std::int64_t pointCount = 0;
+  const std::int64_t* cells = nullptr;
+  std::int64_t cellCount = 0;
+  const double* sizes = nullptr;
+  std::string sizeName;
+};
+
+// Measures every tetrahedron of a mesh. Returns false with `error` naming the defect (no
 // tetrahedra, a non-finite coordinate, a bad size value) and where it is.
-bool measureMesh(const double* points,
-  std::int64_t pointCount,
-  const std::int64_t* cells,
-  std::int64_t cellCount,
-  const double* sizes,
-  const std::string& sizeName,
-  int binCount,
-  MeshQuality& result,
-  std::string& error);
+bool measureMesh(const TetMeshView& mesh, int binCount, MeshQuality& result, std::string& error);
 
 } // namespace tetmesher

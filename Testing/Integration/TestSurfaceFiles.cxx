@@ -22,6 +22,7 @@
 #include "vtkXMLPolyDataWriter.h"
 
 #include <cstring>
+#include <functional>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -160,6 +161,21 @@ vtkSmartPointer<vtkPolyData> Decorated(vtkPolyData* surface, bool floatPoints, b
   }
   return copy;
 }
+// Writes `surface` with vtkXMLPolyDataWriter (appended raw, no compression, unless
+// `configure` says otherwise).
+void Write(vtkPolyData* surface,
+  const std::string& path,
+  const std::function<void(vtkXMLPolyDataWriter*)>& configure)
+{
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetInputData(surface);
+  writer->SetDataModeToAppended();
+  writer->SetEncodeAppendedData(false);
+  writer->SetCompressorTypeToNone();
+  configure(writer);
+  writer->SetFileName(path.c_str());
+  Check(writer->Write() == 1, path + ": VTK could not write it");
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -177,54 +193,40 @@ int main(int argc, char* argv[])
     Compare(path);
     vtkNew<vtkXMLPolyDataReader> reader;
     vtkPolyData* surface = ReadWithVtk(path, reader);
-    for (int mode = 0; mode < 4; ++mode)
-      for (int compressor = 0; compressor < 2; ++compressor)
-        for (int header = 0; header < 2; ++header)
+    // Every encoding VTK writes, as 16 variants (mode, compressor, header size).
+    for (int variant = 0; variant < 16; ++variant)
+    {
+      const int mode = variant / 4, compressor = variant / 2 % 2, header = variant % 2;
+      const std::string out =
+        work + "/variant-" + std::to_string(f) + "-" + std::to_string(variant) + ".vtp";
+      Write(Decorated(surface, (mode + header) % 2 == 1, (mode + compressor) % 2 == 1),
+        out,
+        [=](vtkXMLPolyDataWriter* writer)
         {
-          const bool floatPoints = (mode + header) % 2 == 1;
-          const bool extraCells = (mode + compressor) % 2 == 1;
-          vtkSmartPointer<vtkPolyData> variant = Decorated(surface, floatPoints, extraCells);
-          vtkNew<vtkXMLPolyDataWriter> writer;
-          writer->SetInputData(variant);
           if (mode == 0)
             writer->SetDataModeToAscii();
           else if (mode == 1)
             writer->SetDataModeToBinary();
-          else
-          {
-            writer->SetDataModeToAppended();
-            writer->SetEncodeAppendedData(mode == 3);
-          }
-          if (compressor == 0)
-            writer->SetCompressorTypeToNone();
-          else
+          writer->SetEncodeAppendedData(mode == 3);
+          if (compressor == 1)
             writer->SetCompressorTypeToZLib();
           writer->SetHeaderType(header == 0 ? vtkXMLWriter::UInt32 : vtkXMLWriter::UInt64);
           // Small blocks: several zlib blocks per array, and a short last one.
           writer->SetBlockSize(header == 0 ? 1000 : 32768);
-          const std::string out = work + "/variant-" + std::to_string(f) + "-" +
-            std::to_string(mode) + std::to_string(compressor) + std::to_string(header) + ".vtp";
-          writer->SetFileName(out.c_str());
-          Check(writer->Write() == 1, out + ": VTK could not write it");
-          Compare(out);
-          ++variants;
-        }
-    // What the lean reader leaves to VTK.
-    for (int other = 0; other < 3; ++other)
+        });
+      Compare(out);
+      ++variants;
+    }
+    // What the lean reader leaves to VTK: lz4, lzma, big-endian.
+    const std::function<void(vtkXMLPolyDataWriter*)> others[] = { [](vtkXMLPolyDataWriter* writer)
+      { writer->SetCompressorTypeToLZ4(); },
+      [](vtkXMLPolyDataWriter* writer) { writer->SetCompressorTypeToLZMA(); },
+      [](vtkXMLPolyDataWriter* writer) { writer->SetByteOrderToBigEndian(); } };
+    for (const auto& configure : others)
     {
-      vtkNew<vtkXMLPolyDataWriter> writer;
-      writer->SetInputData(surface);
-      writer->SetDataModeToAppended();
-      if (other == 0)
-        writer->SetCompressorTypeToLZ4();
-      else if (other == 1)
-        writer->SetCompressorTypeToLZMA();
-      else
-        writer->SetByteOrderToBigEndian();
       const std::string out =
-        work + "/declined-" + std::to_string(f) + "-" + std::to_string(other) + ".vtp";
-      writer->SetFileName(out.c_str());
-      Check(writer->Write() == 1, out + ": VTK could not write it");
+        work + "/declined-" + std::to_string(f) + "-" + std::to_string(declined) + ".vtp";
+      Write(surface, out, configure);
       tetmesher::cli::SurfaceData got;
       Check(!tetmesher::cli::ReadVtp(out, got), out + ": read, not declined");
       ++declined;
