@@ -143,6 +143,7 @@ int RunMesh(int argc, char* argv[])
           DrawProgress(progress);
           return true;
         };
+        DrawProgress(0.0); // as VTK's pipeline does when the filter starts
       }
       const auto start = std::chrono::steady_clock::now();
       const SurfaceMeshOutput mesh = meshSurface(job, SettingsOf(options));
