@@ -117,18 +117,21 @@ SurfaceData ReadOff(const std::string& path)
     file.Fail("negative counts");
   }
   SurfaceData surface;
-  surface.points.resize(3 * static_cast<std::size_t>(pointCount));
+  // Reserved up to a bound: the counts of a corrupt header must give its error, not bad_alloc.
+  constexpr long kReserveLimit = 1 << 24;
+  surface.points.reserve(3 * static_cast<std::size_t>(std::min(pointCount, kReserveLimit)));
   for (long i = 0; i < pointCount; ++i)
   {
-    double* x = &surface.points[3 * static_cast<std::size_t>(i)];
+    double x[3];
     if (!file.NextLine(line) || !(line >> x[0] >> x[1] >> x[2]))
     {
       file.Fail("expected point " + std::to_string(i) + " as 'x y z'");
     }
+    surface.points.insert(surface.points.end(), x, x + 3);
   }
-  surface.polygonOffsets.reserve(static_cast<std::size_t>(faceCount) + 1);
+  surface.polygonOffsets.reserve(static_cast<std::size_t>(std::min(faceCount, kReserveLimit)) + 1);
   surface.polygonOffsets.push_back(0);
-  surface.polygonPoints.reserve(3 * static_cast<std::size_t>(faceCount));
+  surface.polygonPoints.reserve(3 * static_cast<std::size_t>(std::min(faceCount, kReserveLimit)));
   for (long f = 0; f < faceCount; ++f)
   {
     long n;
@@ -482,6 +485,9 @@ bool ReadBinary(const Encoding& encoding,
     compressedTotal += HeaderWord(header.data() + (3 + b) * w, w);
   if (compressedTotal > size || !take(compressedTotal, scratch))
     return false;
+  // zlib expands by at most 1032:1: a larger claim is a corrupt header, not memory to take.
+  if (expectedBytes / 1032 > compressedTotal + blocks)
+    return false;
   out.resize(expectedBytes);
   std::size_t in = 0, at = 0;
   for (std::uint64_t b = 0; b < blocks; ++b)
@@ -517,6 +523,10 @@ bool ReadArray(const Encoding& encoding,
   const std::size_t count = tuples * static_cast<std::size_t>(array.components);
   const std::string* format = array.tag.Attribute("format");
   const std::string& text = *encoding.text;
+  // Every value takes at least a byte of the file, or 1/1032 of one compressed: a larger
+  // count is a corrupt header (left to VTK), not memory to take.
+  if (tuples > text.size() * 1032 || count / 1032 > text.size())
+    return false;
   values.resize(count);
   if (!format || *format == "ascii")
   {
