@@ -38,6 +38,13 @@ void RunReader(vtkAlgorithm* reader, const std::string& path)
   }
 }
 
+// Runs a writer with its errors caught: Write() returns 1 even when the file could not be
+// opened, and VTK would print its errors raw.
+bool Write(vtkAlgorithm* writer)
+{
+  return RunFilter(writer).empty() && writer->GetErrorCode() == 0;
+}
+
 // A function of the reader module (SurfaceReaders.cxx), loaded on first use and kept loaded
 // (the objects it makes use its code).
 void* ReaderModuleSymbol(const std::string& path, const char* name)
@@ -410,7 +417,7 @@ void WriteVolumeMesh(vtkUnstructuredGrid* mesh, const std::string& path, bool co
       writer->SetCompressorTypeToZLib();
     else
       writer->SetCompressorTypeToNone();
-    ok = writer->Write();
+    ok = Write(writer);
   }
   else if (ext == ".vtk")
   {
@@ -418,7 +425,7 @@ void WriteVolumeMesh(vtkUnstructuredGrid* mesh, const std::string& path, bool co
     writer->SetFileName(path.c_str());
     writer->SetInputData(mesh);
     writer->SetFileTypeToBinary();
-    ok = writer->Write();
+    ok = Write(writer);
   }
   else
   {

@@ -176,6 +176,7 @@ with tempfile.TemporaryDirectory() as tmp:
     case("memory limit", ["mesh", d("cube.vtp"), "-o", "OUT", "-q", "--size", "0.02",
                           "--memory-limit", "100"])
     case("no such file", ["mesh", d("nosuch.off"), "-o", "OUT", "-q"])
+    case("unwritable output", ["mesh", d("star.off"), "-o", os.path.join(tmp, "no-such-dir", "x.vtu"), "-q"])
     # Polygons to triangulate are left to VTK, as is .stl.
     case("keyhole polygon (VTK path)", ["mesh", os.path.join(data, "defects", "keyhole-polygon.off"),
                                         "-o", "OUT", "-q"], expect_lean=False)
