@@ -1,4 +1,5 @@
 #include "MeshFiles.h"
+#include "MeshReport.h"
 #include "Report.h"
 
 #include "vtkAbstractPolyDataReader.h"
@@ -17,12 +18,8 @@
 #include "vtkXMLUnstructuredGridWriter.h"
 
 #include <algorithm>
-#include <cctype>
 #include <dlfcn.h>
-#include <fstream>
 #include <sstream>
-#include <sys/stat.h>
-#include <unistd.h>
 #include <vector>
 
 namespace tetmesher
@@ -31,33 +28,6 @@ namespace cli
 {
 namespace
 {
-
-[[noreturn]] void Fail(const std::string& path, const std::string& what)
-{
-  throw FileError(path + ": " + what);
-}
-
-void RequireReadableFile(const std::string& path)
-{
-  struct stat info;
-  if (stat(path.c_str(), &info) != 0)
-  {
-    Fail(path, "no such file");
-  }
-  if (!S_ISREG(info.st_mode))
-  {
-    Fail(path, "not a regular file");
-  }
-  std::ifstream probe(path);
-  if (!probe)
-  {
-    Fail(path, "cannot be opened for reading");
-  }
-  if (info.st_size == 0)
-  {
-    Fail(path, "the file is empty");
-  }
-}
 
 void RunReader(vtkAlgorithm* reader, const std::string& path)
 {
@@ -68,31 +38,18 @@ void RunReader(vtkAlgorithm* reader, const std::string& path)
   }
 }
 
-// The reader module, by its path next to this executable (bin/../lib), else by name through
-// the RUNPATH. The path comes first because a bare name is looked up in the RUNPATH of the
-// object that calls dlopen, which under ASan is its interceptor in libasan, not tetmesher.
-void* LoadReaderModule()
+// Runs a writer with its errors caught: Write() returns 1 even when the file could not be
+// opened, and VTK would print its errors raw.
+bool Write(vtkAlgorithm* writer)
 {
-  const char* name = "libtetmesherSurfaceReaders.so";
-  char self[4096];
-  const ssize_t length = readlink("/proc/self/exe", self, sizeof(self) - 1);
-  if (length > 0)
-  {
-    std::string exe(self, static_cast<std::size_t>(length));
-    std::string dir = TETMESHER_READERS_DIR;
-    if (dir.empty() || dir[0] != '/')
-      dir = exe.substr(0, exe.find_last_of('/') + 1) + dir;
-    if (void* module = dlopen((dir + "/" + name).c_str(), RTLD_NOW | RTLD_LOCAL))
-      return module;
-  }
-  return dlopen(name, RTLD_NOW | RTLD_LOCAL);
+  return RunFilter(writer).empty() && writer->GetErrorCode() == 0;
 }
 
 // A function of the reader module (SurfaceReaders.cxx), loaded on first use and kept loaded
 // (the objects it makes use its code).
 void* ReaderModuleSymbol(const std::string& path, const char* name)
 {
-  static void* module = LoadReaderModule();
+  static void* module = LoadModule("libtetmesherSurfaceReaders.so");
   void* symbol = module ? dlsym(module, name) : nullptr;
   if (!symbol)
   {
@@ -103,45 +60,6 @@ void* ReaderModuleSymbol(const std::string& path, const char* name)
   }
   return symbol;
 }
-
-// A line-oriented tokenizer that skips '#' comments and knows the line number for errors.
-class TokenFile
-{
-public:
-  explicit TokenFile(const std::string& path)
-    : Path(path)
-    , Stream(path)
-  {
-  }
-  bool NextLine(std::istringstream& line)
-  {
-    std::string text;
-    while (std::getline(this->Stream, text))
-    {
-      ++this->LineNumber;
-      auto hash = text.find('#');
-      if (hash != std::string::npos)
-      {
-        text.erase(hash);
-      }
-      if (text.find_first_not_of(" \t\r") == std::string::npos)
-      {
-        continue;
-      }
-      line.clear();
-      line.str(text);
-      return true;
-    }
-    return false;
-  }
-  [[noreturn]] void Fail(const std::string& what) const
-  {
-    cli::Fail(this->Path, "line " + std::to_string(this->LineNumber) + ": " + what);
-  }
-  std::string Path;
-  std::ifstream Stream;
-  long LineNumber = 0;
-};
 
 std::string Stem(const std::string& path)
 {
@@ -384,59 +302,22 @@ vtkSmartPointer<vtkUnstructuredGrid> ReadGmsh(const std::string& path)
   return grid;
 }
 
-// Object File Format: "OFF", then "points faces edges", points, and faces "n v0 .. v(n-1)".
-vtkSmartPointer<vtkPolyData> ReadOff(const std::string& path)
+// An .off surface (ReadOff of the lean path) as vtkPolyData.
+vtkSmartPointer<vtkPolyData> ReadOffSurface(const std::string& path)
 {
-  TokenFile file(path);
-  std::istringstream line;
-  std::string header;
-  if (!file.NextLine(line) || !(line >> header) || header.find("OFF") == std::string::npos)
-  {
-    file.Fail("not an OFF file (expected the keyword OFF)");
-  }
-  long pointCount = 0, faceCount = 0;
-  // The counts may follow OFF on the same line.
-  if (!(line >> pointCount >> faceCount))
-  {
-    if (!file.NextLine(line) || !(line >> pointCount >> faceCount))
-    {
-      file.Fail("expected 'pointCount faceCount edgeCount'");
-    }
-  }
-  if (pointCount < 0 || faceCount < 0)
-  {
-    file.Fail("negative counts");
-  }
+  const SurfaceData data = ReadOff(path);
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(pointCount);
-  for (long i = 0; i < pointCount; ++i)
-  {
-    double x, y, z;
-    if (!file.NextLine(line) || !(line >> x >> y >> z))
-    {
-      file.Fail("expected point " + std::to_string(i) + " as 'x y z'");
-    }
-    points->SetPoint(i, x, y, z);
-  }
+  points->SetNumberOfPoints(data.PointCount());
+  for (vtkIdType i = 0; i < data.PointCount(); ++i)
+    points->SetPoint(i, &data.points[static_cast<std::size_t>(3 * i)]);
   vtkNew<vtkCellArray> polys;
   std::vector<vtkIdType> ids;
-  for (long f = 0; f < faceCount; ++f)
+  for (vtkIdType f = 0; f < data.PolygonCount(); ++f)
   {
-    long n;
-    if (!file.NextLine(line) || !(line >> n) || n < 3)
-    {
-      file.Fail("expected face " + std::to_string(f) + " as 'n v0 ... v(n-1)' with n >= 3");
-    }
-    ids.resize(static_cast<std::size_t>(n));
-    for (auto& id : ids)
-    {
-      if (!(line >> id) || id < 0 || id >= pointCount)
-      {
-        file.Fail("face " + std::to_string(f) + " has a missing or out-of-range point index");
-      }
-    }
-    polys->InsertNextCell(n, ids.data());
+    ids.assign(data.polygonPoints.begin() + data.polygonOffsets[static_cast<std::size_t>(f)],
+      data.polygonPoints.begin() + data.polygonOffsets[static_cast<std::size_t>(f + 1)]);
+    polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
   }
   auto surface = vtkSmartPointer<vtkPolyData>::New();
   surface->SetPoints(points);
@@ -445,22 +326,6 @@ vtkSmartPointer<vtkPolyData> ReadOff(const std::string& path)
 }
 
 } // namespace
-
-std::string LowerExtension(const std::string& path)
-{
-  auto dot = path.rfind('.');
-  auto slash = path.rfind('/');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
-  {
-    return "";
-  }
-  std::string ext = path.substr(dot);
-  std::transform(ext.begin(),
-    ext.end(),
-    ext.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 vtkSmartPointer<vtkDataSet> ReadVolumeMesh(const std::string& path)
 {
@@ -504,7 +369,7 @@ vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path)
   vtkSmartPointer<vtkPolyData> surface;
   if (ext == ".off")
   {
-    return ReadOff(path);
+    return ReadOffSurface(path);
   }
   if (ext == ".stl" || ext == ".obj" || ext == ".ply")
   {
@@ -552,7 +417,7 @@ void WriteVolumeMesh(vtkUnstructuredGrid* mesh, const std::string& path, bool co
       writer->SetCompressorTypeToZLib();
     else
       writer->SetCompressorTypeToNone();
-    ok = writer->Write();
+    ok = Write(writer);
   }
   else if (ext == ".vtk")
   {
@@ -560,7 +425,7 @@ void WriteVolumeMesh(vtkUnstructuredGrid* mesh, const std::string& path, bool co
     writer->SetFileName(path.c_str());
     writer->SetInputData(mesh);
     writer->SetFileTypeToBinary();
-    ok = writer->Write();
+    ok = Write(writer);
   }
   else
   {

@@ -3,9 +3,10 @@
 // TetGen .node/.ele and Gmsh ASCII .msh (versions 2.2 and 4.1), and .off surfaces.
 #pragma once
 
+#include "SurfaceFiles.h"
+
 #include "vtkSmartPointer.h"
 
-#include <stdexcept>
 #include <string>
 
 class vtkDataSet;
@@ -17,12 +18,6 @@ namespace tetmesher
 namespace cli
 {
 
-// A defect in an input file: the message names the file and what is wrong.
-struct FileError : std::runtime_error
-{
-  using std::runtime_error::runtime_error;
-};
-
 // Reads a volume mesh. Throws FileError.
 vtkSmartPointer<vtkDataSet> ReadVolumeMesh(const std::string& path);
 
@@ -32,8 +27,6 @@ vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path);
 // Writes an unstructured grid (.vtu or legacy .vtk by extension). Throws FileError.
 // .vtu: raw appended binary, zlib-compressed when `compress`; .vtk: legacy binary.
 void WriteVolumeMesh(vtkUnstructuredGrid* mesh, const std::string& path, bool compress = false);
-
-std::string LowerExtension(const std::string& path);
 
 } // namespace cli
 } // namespace tetmesher

@@ -2,6 +2,7 @@
 // summary that vtkTetQuality computes.
 #include "CommandLine.h"
 #include "MeshFiles.h"
+#include "MeshReport.h"
 #include "Report.h"
 
 #include "vtkCommand.h"
@@ -75,33 +76,29 @@ int RunQuality(int argc, char* argv[])
     std::fputs(kQualityUsage, stderr);
     return 2;
   }
-  try
-  {
-    vtkSmartPointer<vtkDataSet> mesh = ReadVolumeMesh(path);
-    vtkNew<vtkTetQuality> quality;
-    quality->SetInputData(mesh);
-    if (!sizeArray.empty())
+  return ReportingFileErrors(
+    [&]
     {
-      quality->SetSizeArrayName(sizeArray.c_str());
-    }
-    std::string error = RunFilter(quality);
-    if (!error.empty())
-    {
-      std::fprintf(stderr, "tetmesher: %s: %s\n", path.c_str(), error.c_str());
-      return 1;
-    }
-    PrintQualityReport(stdout, path, vtkDataSet::SafeDownCast(quality->GetOutputDataObject(0)));
-    if (histogram)
-    {
-      PrintHistogram(stdout, quality->GetHistogramOutput());
-    }
-  }
-  catch (const FileError& e)
-  {
-    std::fprintf(stderr, "tetmesher: %s\n", e.what());
-    return 1;
-  }
-  return 0;
+      vtkSmartPointer<vtkDataSet> mesh = ReadVolumeMesh(path);
+      vtkNew<vtkTetQuality> quality;
+      quality->SetInputData(mesh);
+      if (!sizeArray.empty())
+      {
+        quality->SetSizeArrayName(sizeArray.c_str());
+      }
+      std::string error = RunFilter(quality);
+      if (!error.empty())
+      {
+        std::fprintf(stderr, "tetmesher: %s: %s\n", path.c_str(), error.c_str());
+        return 1;
+      }
+      PrintQualityReport(stdout, path, vtkDataSet::SafeDownCast(quality->GetOutputDataObject(0)));
+      if (histogram)
+      {
+        PrintHistogram(stdout, HistogramCounts(quality->GetHistogramOutput()));
+      }
+      return 0;
+    });
 }
 
 } // namespace cli

@@ -1,4 +1,5 @@
 #include "Report.h"
+#include "MeshReport.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCommand.h"
@@ -9,7 +10,8 @@
 #include "vtkNew.h"
 #include "vtkTable.h"
 
-#include <algorithm>
+#include <cstdint>
+#include <vector>
 
 namespace tetmesher
 {
@@ -37,11 +39,6 @@ public:
   std::string Text;
 };
 
-double Field(vtkDataSet* mesh, const char* name)
-{
-  vtkDataArray* array = mesh->GetFieldData()->GetArray(name);
-  return array ? array->GetComponent(0, 0) : 0.0;
-}
 } // namespace
 
 std::string RunFilter(vtkAlgorithm* filter)
@@ -58,50 +55,27 @@ std::string RunFilter(vtkAlgorithm* filter)
   return errors->Text;
 }
 
-void PrintQualityReport(std::FILE* out, const std::string& name, vtkDataSet* mesh)
+double FieldValue(vtkDataSet* mesh, const char* name)
 {
-  std::fprintf(out,
-    "%s: %lld tetrahedra, %lld points\n",
-    name.c_str(),
-    static_cast<long long>(Field(mesh, "TetrahedronCount")),
-    static_cast<long long>(mesh->GetNumberOfPoints()));
-  std::fprintf(out,
-    "  quality Q   min %.4f  mean %.4f  1st percentile %.4f\n",
-    Field(mesh, "QualityMinimum"),
-    Field(mesh, "QualityMean"),
-    Field(mesh, "QualityPercentile1"));
-  std::fprintf(out,
-    "  share       Q < 0.1: %.3f%%  Q < 0.3: %.3f%%\n",
-    100.0 * Field(mesh, "QualityShareBelow0.1"),
-    100.0 * Field(mesh, "QualityShareBelow0.3"));
-  std::fprintf(out,
-    "  dihedral    min %.2f deg  max %.2f deg\n",
-    Field(mesh, "MinDihedralAngle"),
-    Field(mesh, "MaxDihedralAngle"));
+  vtkDataArray* array = mesh->GetFieldData()->GetArray(name);
+  return array ? array->GetComponent(0, 0) : 0.0;
 }
 
-void PrintHistogram(std::FILE* out, vtkTable* histogram)
+void PrintQualityReport(std::FILE* out, const std::string& name, vtkDataSet* mesh)
 {
-  vtkDataArray* start = vtkDataArray::SafeDownCast(histogram->GetColumnByName("BinStart"));
-  vtkDataArray* end = vtkDataArray::SafeDownCast(histogram->GetColumnByName("BinEnd"));
+  PrintQualityReport(out,
+    name,
+    static_cast<long long>(mesh->GetNumberOfPoints()),
+    [mesh](const char* field) { return FieldValue(mesh, field); });
+}
+
+std::vector<std::int64_t> HistogramCounts(vtkTable* histogram)
+{
+  std::vector<std::int64_t> counts;
   vtkDataArray* count = vtkDataArray::SafeDownCast(histogram->GetColumnByName("Count"));
-  if (!start || !end || !count)
-    return;
-  double largest = 1;
-  for (vtkIdType i = 0; i < count->GetNumberOfTuples(); ++i)
-    largest = std::max(largest, count->GetComponent(i, 0));
-  std::fprintf(out, "  histogram of Q\n");
-  for (vtkIdType i = 0; i < count->GetNumberOfTuples(); ++i)
-  {
-    double n = count->GetComponent(i, 0);
-    int bar = static_cast<int>(40.0 * n / largest + 0.5);
-    std::fprintf(out,
-      "  %.2f-%.2f %10lld %s\n",
-      start->GetComponent(i, 0),
-      end->GetComponent(i, 0),
-      static_cast<long long>(n),
-      std::string(static_cast<std::size_t>(bar), '#').c_str());
-  }
+  for (vtkIdType i = 0; count && i < count->GetNumberOfTuples(); ++i)
+    counts.push_back(static_cast<std::int64_t>(count->GetComponent(i, 0)));
+  return counts;
 }
 } // namespace cli
 } // namespace tetmesher

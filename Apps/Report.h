@@ -1,8 +1,11 @@
-// Text reports printed by the command line, and running a VTK filter with its errors caught.
+// The command line's reports of VTK objects (printed by MeshReport.h), and running a VTK
+// filter with its errors caught.
 #pragma once
 
+#include <cstdint>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 class vtkAlgorithm;
 class vtkDataSet;
@@ -19,6 +22,10 @@ std::string RunFilter(vtkAlgorithm* filter);
 // "NAME: N tetrahedra, M points" and the quality summary from the field data.
 void PrintQualityReport(std::FILE* out, const std::string& name, vtkDataSet* mesh);
 
-void PrintHistogram(std::FILE* out, vtkTable* histogram);
+// The Count column of a histogram table (vtkTetQuality's, vtkTetMesher's).
+std::vector<std::int64_t> HistogramCounts(vtkTable* histogram);
+
+// A value of the field data (0 when missing).
+double FieldValue(vtkDataSet* mesh, const char* name);
 } // namespace cli
 } // namespace tetmesher

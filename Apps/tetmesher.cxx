@@ -3,13 +3,11 @@
 //   tetmesher mesh SURFACE -o OUT.vtu [options]
 // Exit status: 0 success, 1 bad input or failure (the message names file and defect),
 // 2 wrong usage.
+// The executable does not link VTK: `mesh` from .off/.vtp to .vtu runs the core directly
+// (LeanMeshCommand.cxx); the rest is in libtetmesherVtk.so, loaded when needed.
 #include "CommandLine.h"
 
-#include "vtkSMPTools.h"
-
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <string>
 
 namespace
@@ -35,10 +33,6 @@ int main(int argc, char* argv[])
     std::fputs(kUsage, stderr);
     return 2;
   }
-  // The mesher is sequential; VTK's threads (TBB) only parallelise array scans of the writer
-  // and cost their start-up (~6 ms of a 70 ms run). VTK_SMP_BACKEND_IN_USE still chooses.
-  if (!std::getenv("VTK_SMP_BACKEND_IN_USE"))
-    vtkSMPTools::SetBackend("Sequential");
   const std::string command = argv[1];
   if (command == "--help" || command == "-h" || command == "help")
   {
@@ -51,7 +45,12 @@ int main(int argc, char* argv[])
   }
   if (command == "quality")
   {
-    return tetmesher::cli::RunQuality(argc - 2, argv + 2);
+    return tetmesher::cli::CallVtkModule("tetmesherQuality",
+      [&](void* function)
+      {
+        using Quality = int (*)(int, char**);
+        return reinterpret_cast<Quality>(function)(argc - 2, argv + 2);
+      });
   }
   std::fprintf(stderr, "tetmesher: unknown command '%s'\n\n%s", command.c_str(), kUsage);
   return 2;

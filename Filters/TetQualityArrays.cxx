@@ -11,9 +11,8 @@
 #include "vtkNew.h"
 #include "vtkTable.h"
 
-#include <cmath>
-#include <limits>
-#include <sstream>
+#include <cstdint>
+#include <vector>
 
 namespace tetmesher
 {
@@ -27,75 +26,33 @@ bool ComputeTetQuality(vtkDataSet* input,
   std::string& error)
 {
   const vtkIdType pointCount = input->GetNumberOfPoints();
+  std::vector<double> points(static_cast<std::size_t>(3 * pointCount));
+  std::vector<double> sizes(size ? static_cast<std::size_t>(pointCount) : 0);
   for (vtkIdType p = 0; p < pointCount; ++p)
   {
-    double x[3];
-    input->GetPoint(p, x);
-    if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
-    {
-      std::ostringstream message;
-      message << "point " << p << " has a non-finite coordinate (" << x[0] << ", " << x[1] << ", "
-              << x[2] << ")";
-      error = message.str();
-      return false;
-    }
+    input->GetPoint(p, &points[static_cast<std::size_t>(3 * p)]);
     if (size)
-    {
-      double h = size->GetComponent(p, 0);
-      if (!(h > 0) || !std::isfinite(h))
-      {
-        std::ostringstream message;
-        message << "size array '" << (size->GetName() ? size->GetName() : "")
-                << "' has the invalid value " << h << " at point " << p
-                << " (sizes must be finite and > 0)";
-        error = message.str();
-        return false;
-      }
-    }
+      sizes[static_cast<std::size_t>(p)] = size->GetComponent(p, 0);
   }
-
   const vtkIdType cellCount = input->GetNumberOfCells();
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  result.Quality.assign(static_cast<std::size_t>(cellCount), nan);
-  result.MinDihedral.assign(static_cast<std::size_t>(cellCount), nan);
-  result.MaxDihedral.assign(static_cast<std::size_t>(cellCount), nan);
-  std::vector<TetShape> shapes;
-  shapes.reserve(static_cast<std::size_t>(cellCount));
+  std::vector<std::int64_t> cells(static_cast<std::size_t>(4 * cellCount), -1);
   vtkNew<vtkIdList> ids;
   for (vtkIdType c = 0; c < cellCount; ++c)
   {
     if (input->GetCellType(c) != VTK_TETRA)
-    {
       continue;
-    }
     input->GetCellPoints(c, ids);
-    double x[4][3];
-    double h[4] = { 1, 1, 1, 1 };
     for (int i = 0; i < 4; ++i)
-    {
-      input->GetPoint(ids->GetId(i), x[i]);
-      if (size)
-      {
-        h[i] = size->GetComponent(ids->GetId(i), 0);
-      }
-    }
-    TetShape shape =
-      size ? measureTetScaled(x[0], x[1], x[2], x[3], h) : measureTet(x[0], x[1], x[2], x[3]);
-    result.Quality[static_cast<std::size_t>(c)] = shape.quality;
-    result.MinDihedral[static_cast<std::size_t>(c)] = shape.minDihedral;
-    result.MaxDihedral[static_cast<std::size_t>(c)] = shape.maxDihedral;
-    shapes.push_back(shape);
+      cells[static_cast<std::size_t>(4 * c + i)] = ids->GetId(i);
   }
-  if (shapes.empty())
-  {
-    std::ostringstream message;
-    message << "the input has no tetrahedra (" << cellCount << " cells, none of type VTK_TETRA)";
-    error = message.str();
-    return false;
-  }
-  result.Summary = summarizeQuality(shapes);
-  result.Histogram = qualityHistogram(shapes, binCount);
-  return true;
+  TetMeshView view;
+  view.points = points.data();
+  view.pointCount = pointCount;
+  view.cells = cells.data();
+  view.cellCount = cellCount;
+  view.sizes = size ? sizes.data() : nullptr;
+  view.sizeName = size && size->GetName() ? size->GetName() : "";
+  return measureMesh(view, binCount, result, error);
 }
 
 namespace
@@ -125,22 +82,16 @@ void AddFieldScalar(vtkFieldData* fieldData, const char* name, double value)
 
 void AttachQualityArrays(const TetQualityResult& result, vtkCellData* cellData)
 {
-  AddCellArray("Quality", result.Quality, cellData);
-  AddCellArray("MinDihedralAngle", result.MinDihedral, cellData);
-  AddCellArray("MaxDihedralAngle", result.MaxDihedral, cellData);
+  AddCellArray("Quality", result.quality, cellData);
+  AddCellArray("MinDihedralAngle", result.minDihedral, cellData);
+  AddCellArray("MaxDihedralAngle", result.maxDihedral, cellData);
   cellData->SetActiveScalars("Quality");
 }
 
 void AttachQualitySummary(const QualitySummary& summary, vtkFieldData* fieldData)
 {
-  AddFieldScalar(fieldData, "TetrahedronCount", static_cast<double>(summary.count));
-  AddFieldScalar(fieldData, "QualityMinimum", summary.minimum);
-  AddFieldScalar(fieldData, "QualityMean", summary.mean);
-  AddFieldScalar(fieldData, "QualityPercentile1", summary.percentile1);
-  AddFieldScalar(fieldData, "QualityShareBelow0.1", summary.shareBelow01);
-  AddFieldScalar(fieldData, "QualityShareBelow0.3", summary.shareBelow03);
-  AddFieldScalar(fieldData, "MinDihedralAngle", summary.minDihedral);
-  AddFieldScalar(fieldData, "MaxDihedralAngle", summary.maxDihedral);
+  for (const auto& [name, value] : qualitySummaryFields(summary))
+    AddFieldScalar(fieldData, name, value);
 }
 
 void FillHistogramTable(const std::vector<std::int64_t>& bins, vtkTable* table)

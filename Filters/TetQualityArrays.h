@@ -1,5 +1,5 @@
 // VTK glue shared by vtkTetQuality and vtkTetMesher: measure every tet of a dataset with the
-// core's formula and turn the results into VTK arrays, field data and a histogram table.
+// core's measureMesh and turn the results into VTK arrays, field data and a histogram table.
 #pragma once
 
 #include "TetQuality.h"
@@ -18,18 +18,11 @@ namespace tetmesher
 namespace vtkglue
 {
 
-struct TetQualityResult
-{
-  std::vector<double> Quality;     // per cell; NaN for cells that are not tetrahedra
-  std::vector<double> MinDihedral; // per cell, degrees
-  std::vector<double> MaxDihedral; // per cell, degrees
-  QualitySummary Summary;
-  std::vector<std::int64_t> Histogram;
-};
+using TetQualityResult = MeshQuality;
 
-// Measures every VTK_TETRA cell of `input`. `size` (optional) is a point array of h > 0.
-// Returns false with `error` naming the defect (no tetrahedra, a non-finite coordinate,
-// a bad size value) and where it is.
+// Measures every VTK_TETRA cell of `input` (measureMesh of the core). `size` (optional) is a
+// point array of h > 0. Returns false with `error` naming the defect (no tetrahedra, a
+// non-finite coordinate, a bad size value) and where it is.
 bool ComputeTetQuality(vtkDataSet* input,
   vtkDataArray* size,
   int binCount,

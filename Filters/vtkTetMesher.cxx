@@ -1,10 +1,8 @@
 #include "vtkTetMesher.h"
 
-#include "MemoryBudget.h"
-#include "MeshAssembly.h"
 #include "SurfaceDiagnosis.h"
+#include "SurfaceMeshing.h"
 #include "TetQualityArrays.h"
-#include "VolumeMesher.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
@@ -46,18 +44,13 @@ vtkStandardNewMacro(vtkTetMesher);
 
 namespace
 {
-// The core orients tets with Shewchuk's orient3d > 0; VTK_TETRA wants the opposite (the
-// right-hand normal of points 0,1,2 towards point 3). Swapping points 0 and 1 converts, and
-// swaps the faces opposite them.
-constexpr int kVtkFromCore[4] = { 1, 0, 2, 3 };
-
 // The input cells and points named by the diagnosis, for users to see them (ParaView: colour
 // output 2 by DefectKind). Triangles become polygons, lone points vertices; cell data
 // DefectKind (the SurfaceDefect value), DefectRecord (which record), InputCellId; field data
 // DefectSummary (the text of the error).
 void FillDefects(const tetmesher::SurfaceDiagnosis& diagnosis,
   vtkPolyData* input,
-  const std::vector<vtkIdType>& cellOfTriangle,
+  const std::vector<std::int64_t>& cellOfTriangle,
   vtkPolyData* defects)
 {
   defects->Initialize();
@@ -199,10 +192,74 @@ private:
   std::vector<double> Weights;
 };
 
+// One property and its field of the core's settings, copied one way or the other.
+template<typename Get, typename Set, typename T>
+void Exchange(vtkTetMesher* filter,
+  tetmesher::SurfaceMeshSettings& settings,
+  bool toFilter,
+  Get get,
+  Set set,
+  T tetmesher::SurfaceMeshSettings::*field)
+{
+  if (toFilter)
+    (filter->*set)(settings.*field);
+  else
+    settings.*field = (filter->*get)();
+}
+
+// The filter's properties that are the core job's settings, in one list for both directions:
+// the constructor takes the core's defaults, RequestData hands the properties to the core.
+void ExchangeSettings(vtkTetMesher* f, tetmesher::SurfaceMeshSettings& s, bool toFilter)
+{
+  using M = vtkTetMesher;
+  using S = tetmesher::SurfaceMeshSettings;
+  Exchange(f, s, toFilter, &M::GetCheckInput, &M::SetCheckInput, &S::checkInput);
+  Exchange(f,
+    s,
+    toFilter,
+    &M::GetEnclosedShellsAreHoles,
+    &M::SetEnclosedShellsAreHoles,
+    &S::enclosedShellsAreHoles);
+  Exchange(f,
+    s,
+    toFilter,
+    &M::GetMaximumSteinerPoints,
+    &M::SetMaximumSteinerPoints,
+    &S::maximumSteinerPoints);
+  Exchange(f,
+    s,
+    toFilter,
+    &M::GetRemoveSteinerPoints,
+    &M::SetRemoveSteinerPoints,
+    &S::removeSteinerPoints);
+  Exchange(f, s, toFilter, &M::GetRefine, &M::SetRefine, &S::refine);
+  Exchange(f, s, toFilter, &M::GetSizeScale, &M::SetSizeScale, &S::sizeScale);
+  Exchange(f, s, toFilter, &M::GetMinSize, &M::SetMinSize, &S::minSize);
+  Exchange(f, s, toFilter, &M::GetMaxSize, &M::SetMaxSize, &S::maxSize);
+  Exchange(f, s, toFilter, &M::GetGradation, &M::SetGradation, &S::gradation);
+  Exchange(
+    f, s, toFilter, &M::GetInterpolationPower, &M::SetInterpolationPower, &S::interpolationPower);
+  Exchange(f, s, toFilter, &M::GetOptimize, &M::SetOptimize, &S::optimize);
+  Exchange(
+    f, s, toFilter, &M::GetOptimizationPasses, &M::SetOptimizationPasses, &S::optimizationPasses);
+  Exchange(f, s, toFilter, &M::GetQualityTarget, &M::SetQualityTarget, &S::qualityTarget);
+  Exchange(f, s, toFilter, &M::GetDihedralTarget, &M::SetDihedralTarget, &S::dihedralTarget);
+  Exchange(f, s, toFilter, &M::GetTimeLimit, &M::SetTimeLimit, &S::timeLimit);
+  Exchange(f, s, toFilter, &M::GetMemoryLimit, &M::SetMemoryLimit, &S::memoryLimit);
+  Exchange(f, s, toFilter, &M::GetNumberOfBins, &M::SetNumberOfBins, &S::numberOfBins);
+  if (toFilter)
+    f->SetQualityMeasure(
+      s.measure == tetmesher::QualityMeasure::MinDihedral ? M::MIN_DIHEDRAL : M::PAPER_Q);
+  else
+    s.measure = f->GetQualityMeasure() == M::MIN_DIHEDRAL ? tetmesher::QualityMeasure::MinDihedral
+                                                          : tetmesher::QualityMeasure::PaperQ;
+}
 } // namespace
 
 vtkTetMesher::vtkTetMesher()
 {
+  tetmesher::SurfaceMeshSettings defaults;
+  ExchangeSettings(this, defaults, true);
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(3);
   this->SetControllingSpaceArrayName("h");
@@ -320,7 +377,7 @@ int vtkTetMesher::RequestData(vtkInformation*,
   // Input cell ids of polygons come after the vertices and lines of a vtkPolyData.
   const vtkIdType firstPolyId = input->GetNumberOfVerts() + input->GetNumberOfLines();
   std::vector<std::int32_t> triangles;
-  std::vector<vtkIdType> cellOfTriangle; // the input cell each triangle comes from
+  std::vector<std::int64_t> cellOfTriangle; // the input cell each triangle comes from
   triangles.reserve(static_cast<std::size_t>(3 * input->GetNumberOfPolys()));
   vtkIdType triangulatedPolygons = 0;
   {
@@ -385,164 +442,79 @@ int vtkTetMesher::RequestData(vtkInformation*,
   const auto triangleCount = static_cast<std::int32_t>(triangles.size() / 3);
   lap("input conversion");
 
-  defects->Initialize();
-  if (this->CheckInput)
+  // --- Mesh and the output's arrays (the core's job, shared with the command line) --------
+  tetmesher::SurfaceMeshInput job;
+  job.points = coords.data();
+  job.pointCount = static_cast<std::int32_t>(pointCount);
+  job.triangles = triangles.data();
+  job.triangleCount = triangleCount;
+  job.cellOfTriangle = cellOfTriangle.data();
+  job.triangleIdsAreNotCellIds = firstPolyId > 0 || triangulatedPolygons > 0;
+  job.triangulatedPolygons = static_cast<double>(triangulatedPolygons);
+  if (this->SizeArrayName && *this->SizeArrayName)
   {
-    tetmesher::DiagnosisOptions diagnosisOptions;
-    diagnosisOptions.maxRecordsPerKind = 1000;
-    tetmesher::SurfaceDiagnosis diagnosis = tetmesher::diagnoseSurface(coords.data(),
-      static_cast<std::int32_t>(pointCount),
-      triangles.data(),
-      triangleCount,
-      diagnosisOptions);
-    FillDefects(diagnosis, input, cellOfTriangle, defects);
-    if (!diagnosis.ok())
+    job.sizeArrayName = this->SizeArrayName;
+    job.readSizeArray = [this, input, pointCount](std::vector<double>& sizes)
     {
-      std::string summary = diagnosis.summary(10);
-      if (firstPolyId > 0 || triangulatedPolygons > 0)
-      {
-        summary += "\n(triangle ids count the triangles of the input's polygons in order; "
-                   "input cell ids differ when the input has vertices, lines or polygons)";
-      }
-      return fail("the input surface cannot be meshed:\n" + summary);
-    }
-    lap("input diagnosis");
-  }
-  this->UpdateProgress(0.05);
-
-  // --- Size field sources ---------------------------------------------------------------
-  tetmesher::VolumeMeshOptions options;
-  if (this->SizeArrayName && *this->SizeArrayName && this->Refine)
-  {
-    vtkDataArray* sizes = input->GetPointData()->GetArray(this->SizeArrayName);
-    if (!sizes)
-    {
-      return fail(std::string("SizeArrayName names point array '") + this->SizeArrayName +
-        "', which the input surface does not have");
-    }
-    options.inputSizes.resize(static_cast<std::size_t>(pointCount));
-    for (vtkIdType p = 0; p < pointCount; ++p)
-    {
-      const double h = sizes->GetComponent(p, 0);
-      if (!(h > 0) || !std::isfinite(h))
-      {
-        std::ostringstream message;
-        message << "size array '" << this->SizeArrayName << "' has the invalid value " << h
-                << " at point " << p << " (sizes must be finite and > 0)";
-        return fail(message.str());
-      }
-      options.inputSizes[static_cast<std::size_t>(p)] = h;
-    }
+      vtkDataArray* array = input->GetPointData()->GetArray(this->SizeArrayName);
+      if (!array)
+        return false;
+      sizes.resize(static_cast<std::size_t>(pointCount));
+      for (vtkIdType p = 0; p < pointCount; ++p)
+        sizes[static_cast<std::size_t>(p)] = array->GetComponent(p, 0);
+      return true;
+    };
   }
   ControllingSpace space;
-  if (this->Refine && this->GetNumberOfInputConnections(1) > 0)
+  if (this->GetNumberOfInputConnections(1) > 0)
   {
-    std::string error = space.Initialize(vtkDataSet::GetData(inputVector[1]),
-      this->ControllingSpaceArrayName ? this->ControllingSpaceArrayName : "");
-    if (!error.empty())
+    job.prepareBackground = [&](std::function<double(const double*)>& sizeAt)
     {
-      return fail("controlling space: " + error);
-    }
-    if (options.inputSizes.empty())
-    {
-      options.background = [&space](const double* x) { return space.SizeAt(x); };
-    }
+      std::string error = space.Initialize(vtkDataSet::GetData(inputVector[1]),
+        this->ControllingSpaceArrayName ? this->ControllingSpaceArrayName : "");
+      sizeAt = [&space](const double* x) { return space.SizeAt(x); };
+      return error;
+    };
   }
-
-  // --- Mesh ------------------------------------------------------------------------------
-  // The surface was checked above (or the user chose not to): not twice.
-  options.boundary.validateInput = false;
-  options.boundary.enclosedShellsAreHoles = this->EnclosedShellsAreHoles;
-  options.boundary.maxSteinerPoints = this->MaximumSteinerPoints;
-  options.boundary.removeSteinerPoints = this->RemoveSteinerPoints;
-  options.refine = this->Refine;
-  options.refinement.size.scale = this->SizeScale;
-  options.refinement.size.minSize = this->MinSize;
-  options.refinement.size.maxSize = this->MaxSize;
-  options.refinement.size.gradation = this->Gradation;
-  options.refinement.size.interpolationPower = this->InterpolationPower;
-  options.optimize = this->Optimize && this->OptimizationPasses > 0;
-  options.optimization.passes = this->OptimizationPasses;
-  options.optimization.qualityTarget = this->QualityTarget;
-  options.optimization.dihedralTarget = this->DihedralTarget;
-  options.optimization.measure = this->QualityMeasure == MIN_DIHEDRAL
-    ? tetmesher::QualityMeasure::MinDihedral
-    : tetmesher::QualityMeasure::PaperQ;
-  options.boundary.maxSeconds = this->TimeLimit;
-  // MemoryLimit in MB; 0: what the machine has available now; < 0: no check.
-  options.refinement.memoryLimitBytes = this->MemoryLimit > 0 ? this->MemoryLimit * 1e6
-    : this->MemoryLimit == 0                                  ? tetmesher::availableMemoryBytes()
-                                                              : 0.0;
-  options.boundary.memoryLimitBytes = options.refinement.memoryLimitBytes;
-  lap("size sources");
-  const auto start = std::chrono::steady_clock::now();
-  bool outOfTime = false;
-  tetmesher::VolumeMeshResult result = tetmesher::meshVolume(coords.data(),
-    static_cast<std::int32_t>(pointCount),
-    triangles.data(),
-    triangleCount,
-    options,
-    [this, start, &outOfTime](double progress)
-    {
-      this->UpdateProgress(0.05 + 0.85 * progress);
-      if (this->TimeLimit > 0 &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
-          this->TimeLimit)
-      {
-        outOfTime = true;
-        return false;
-      }
-      return !this->GetAbortExecute();
-    });
-  if (this->GetAbortExecute())
+  job.progress = [this](double progress)
   {
-    return fail("meshing was aborted");
-  }
-  if (outOfTime && !result.ok)
+    this->UpdateProgress(progress);
+    return !this->GetAbortExecute();
+  };
+  tetmesher::SurfaceMeshSettings settings;
+  ExchangeSettings(this, settings, false);
+  defects->Initialize();
+  const tetmesher::SurfaceMeshOutput result = tetmesher::meshSurface(job, settings);
+  this->StageTimings += result.stageTimings;
+  if (this->CheckInput)
   {
-    std::ostringstream message;
-    message << "meshing exceeded the time limit of " << this->TimeLimit << " s (" << result.error
-            << ")";
-    return fail(message.str());
+    FillDefects(result.diagnosis, input, cellOfTriangle, defects);
   }
   if (!result.ok)
   {
     return fail(result.error);
   }
-
-  for (const auto& [stage, seconds] : result.stageSeconds)
-  {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.4f\t", seconds);
-    this->StageTimings += text + stage + "\n";
-  }
   lapStart = std::chrono::steady_clock::now();
 
-  // --- Convert back ------------------------------------------------------------------------
-  const vtkIdType outPointCount = static_cast<vtkIdType>(result.points.size() / 3);
+  // --- Convert to VTK ----------------------------------------------------------------------
+  const vtkIdType outPointCount = static_cast<vtkIdType>(result.mesh.points.size() / 3);
+  vtkNew<vtkDoubleArray> coordinates;
+  coordinates->SetNumberOfComponents(3);
+  coordinates->SetNumberOfTuples(outPointCount);
+  std::copy(result.mesh.points.begin(), result.mesh.points.end(), coordinates->GetPointer(0));
   vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(outPointCount);
-  for (vtkIdType p = 0; p < outPointCount; ++p)
-  {
-    points->SetPoint(p, &result.points[static_cast<std::size_t>(3 * p)]);
-  }
+  points->SetData(coordinates);
   output->SetPoints(points);
 
-  const vtkIdType tetCount = static_cast<vtkIdType>(result.tets.size() / 4);
+  const vtkIdType tetCount = static_cast<vtkIdType>(result.cells.size() / 4);
   vtkNew<vtkIdTypeArray> offsets, connectivity;
   offsets->SetNumberOfTuples(tetCount + 1);
-  connectivity->SetNumberOfTuples(4 * tetCount);
-  for (vtkIdType t = 0; t < tetCount; ++t)
+  for (vtkIdType t = 0; t <= tetCount; ++t)
   {
     offsets->SetValue(t, 4 * t);
-    for (int i = 0; i < 4; ++i)
-    {
-      connectivity->SetValue(
-        4 * t + i, result.tets[static_cast<std::size_t>(4 * t + kVtkFromCore[i])]);
-    }
   }
-  offsets->SetValue(tetCount, 4 * tetCount);
+  connectivity->SetNumberOfTuples(4 * tetCount);
+  std::copy(result.cells.begin(), result.cells.end(), connectivity->GetPointer(0));
   vtkNew<vtkCellArray> cells;
   cells->SetData(offsets, connectivity);
   output->SetCells(VTK_TETRA, cells);
@@ -550,95 +522,43 @@ int vtkTetMesher::RequestData(vtkInformation*,
   vtkNew<vtkIntArray> regionIds;
   regionIds->SetName("RegionId");
   regionIds->SetNumberOfTuples(tetCount);
-  for (vtkIdType t = 0; t < tetCount; ++t)
-  {
-    regionIds->SetValue(t, result.regionIds[static_cast<std::size_t>(t)]);
-  }
+  std::copy(result.mesh.regionIds.begin(), result.mesh.regionIds.end(), regionIds->GetPointer(0));
   output->GetCellData()->AddArray(regionIds);
 
   vtkNew<vtkIdTypeArray> inputFaces;
   inputFaces->SetName("InputFaceIds");
   inputFaces->SetNumberOfComponents(4);
   inputFaces->SetNumberOfTuples(tetCount);
-  inputFaces->Fill(-1);
-  // Every tet face lying on an input triangle (both sides of an interface triangle).
-  const std::vector<std::int32_t> faceTriangle =
-    tetmesher::tetFaceTriangles(result.tets, triangles.data(), triangleCount);
-  for (vtkIdType t = 0; t < tetCount; ++t)
-  {
-    for (int f = 0; f < 4; ++f)
-    {
-      const std::int32_t tri = faceTriangle[static_cast<std::size_t>(4 * t + f)];
-      if (tri >= 0)
-        inputFaces->SetTypedComponent(
-          t, kVtkFromCore[f], cellOfTriangle[static_cast<std::size_t>(tri)]);
-    }
-  }
+  std::copy(result.inputFaceIds.begin(), result.inputFaceIds.end(), inputFaces->GetPointer(0));
   output->GetCellData()->AddArray(inputFaces);
-  lap("output conversion");
 
-  // Quality with the same code as vtkTetQuality.
-  tetmesher::vtkglue::TetQualityResult quality;
-  std::string qualityError;
-  if (!tetmesher::vtkglue::ComputeTetQuality(
-        output, nullptr, this->NumberOfBins, quality, qualityError))
-  {
-    return fail("quality of the result: " + qualityError);
-  }
-  tetmesher::vtkglue::AttachQualityArrays(quality, output->GetCellData());
+  tetmesher::vtkglue::AttachQualityArrays(result.quality, output->GetCellData());
   vtkFieldData* fieldData = output->GetFieldData();
-  tetmesher::vtkglue::AttachQualitySummary(quality.Summary, fieldData);
-  tetmesher::vtkglue::AddFieldScalar(fieldData, "SteinerPointCount", result.steinerPoints);
-  tetmesher::vtkglue::AddFieldScalar(fieldData, "InteriorPointCount", result.interiorPoints);
-  tetmesher::vtkglue::AddFieldScalar(fieldData, "RegionCount", result.regionCount);
-  tetmesher::vtkglue::AddFieldScalar(
-    fieldData, "TriangulatedPolygonCount", static_cast<double>(triangulatedPolygons));
-  tetmesher::vtkglue::AddFieldScalar(fieldData, "MeshingSeconds", result.seconds);
-  if (!result.vertexSize.empty())
+  for (const auto& [name, value] : result.fieldData)
+  {
+    tetmesher::vtkglue::AddFieldScalar(fieldData, name.c_str(), value);
+  }
+  if (!result.mesh.vertexSize.empty())
   {
     vtkNew<vtkDoubleArray> h;
     h->SetName("h");
     h->SetNumberOfTuples(outPointCount);
-    for (vtkIdType p = 0; p < outPointCount; ++p)
-    {
-      h->SetValue(p, result.vertexSize[static_cast<std::size_t>(p)]);
-    }
+    std::copy(result.mesh.vertexSize.begin(), result.mesh.vertexSize.end(), h->GetPointer(0));
     output->GetPointData()->AddArray(h);
   }
-  lap("quality arrays");
-  tetmesher::vtkglue::FillHistogramTable(quality.Histogram, histogram);
-  // The paper's figure 6 shows the histogram before and after optimisation. Only Q is used:
-  // measureTetForOptimization gives it bit for bit with one arc cosine fewer per tet.
+  tetmesher::vtkglue::FillHistogramTable(result.quality.histogram, histogram);
+  if (!result.histogramBefore.empty())
   {
-    std::vector<tetmesher::TetShape> before;
-    before.reserve(result.tetsBeforeOptimization.size() / 4);
-    for (std::size_t t = 0; t + 3 < result.tetsBeforeOptimization.size(); t += 4)
+    vtkNew<vtkIdTypeArray> counts;
+    counts->SetName("CountBeforeOptimization");
+    for (std::int64_t n : result.histogramBefore)
     {
-      const double* p[4];
-      for (int i = 0; i < 4; ++i)
-      {
-        p[i] = &result.points[3 *
-          static_cast<std::size_t>(
-            result.tetsBeforeOptimization[t + static_cast<std::size_t>(kVtkFromCore[i])])];
-      }
-      before.push_back(tetmesher::measureTetForOptimization(p[0], p[1], p[2], p[3], nullptr));
+      counts->InsertNextValue(static_cast<vtkIdType>(n));
     }
-    if (!before.empty())
-    {
-      std::vector<std::int64_t> bins = tetmesher::qualityHistogram(before, this->NumberOfBins);
-      vtkNew<vtkIdTypeArray> counts;
-      counts->SetName("CountBeforeOptimization");
-      for (std::int64_t n : bins)
-      {
-        counts->InsertNextValue(static_cast<vtkIdType>(n));
-      }
-      histogram->AddColumn(counts);
-      tetmesher::vtkglue::AddFieldScalar(
-        fieldData, "QualityMinimumBeforeOptimization", tetmesher::summarizeQuality(before).minimum);
-    }
+    histogram->AddColumn(counts);
   }
-  tetmesher::vtkglue::AttachQualitySummary(quality.Summary, histogram->GetFieldData());
-  lap("histograms");
+  tetmesher::vtkglue::AttachQualitySummary(result.quality.summary, histogram->GetFieldData());
+  lap("VTK output");
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -267,27 +267,29 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
-  bool EnclosedShellsAreHoles = false;
-  bool Refine = true;
+  // The properties the core's job takes: their defaults are those of
+  // tetmesher::SurfaceMeshSettings, set by the constructor (the command line shares them).
+  bool EnclosedShellsAreHoles{};
+  bool Refine{};
   char* SizeArrayName = nullptr;
   char* ControllingSpaceArrayName = nullptr;
-  double SizeScale = 1.0;
-  double MinSize = 0.0;
-  double MaxSize = 0.0;
-  double Gradation = 1.5;
-  double InterpolationPower = 1.0;
-  bool Optimize = true;
-  int OptimizationPasses = 3;
-  double QualityTarget = 0.35;
-  double DihedralTarget = 25.0;
-  double TimeLimit = 0.0;
-  double MemoryLimit = 0.0;
+  double SizeScale{};
+  double MinSize{};
+  double MaxSize{};
+  double Gradation{};
+  double InterpolationPower{};
+  bool Optimize{};
+  int OptimizationPasses{};
+  double QualityTarget{};
+  double DihedralTarget{};
+  double TimeLimit{};
+  double MemoryLimit{};
   int QualityMeasure = PAPER_Q;
-  int MaximumSteinerPoints = -1;
-  bool RemoveSteinerPoints = true;
-  bool CheckInput = true;
+  int MaximumSteinerPoints{};
+  bool RemoveSteinerPoints{};
+  bool CheckInput{};
   bool TriangulatePolygons = true;
-  int NumberOfBins = 20;
+  int NumberOfBins{};
   std::string LastError;
   std::string StageTimings;
 

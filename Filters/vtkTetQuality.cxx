@@ -105,8 +105,8 @@ int vtkTetQuality::RequestData(vtkInformation*,
     return 0;
   }
   tetmesher::vtkglue::AttachQualityArrays(result, output->GetCellData());
-  tetmesher::vtkglue::AttachQualitySummary(result.Summary, output->GetFieldData());
-  tetmesher::vtkglue::FillHistogramTable(result.Histogram, histogram);
-  tetmesher::vtkglue::AttachQualitySummary(result.Summary, histogram->GetFieldData());
+  tetmesher::vtkglue::AttachQualitySummary(result.summary, output->GetFieldData());
+  tetmesher::vtkglue::FillHistogramTable(result.histogram, histogram);
+  tetmesher::vtkglue::AttachQualitySummary(result.summary, histogram->GetFieldData());
   return 1;
 }

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <sstream>
 
 namespace tetmesher
 {
@@ -199,6 +201,82 @@ std::vector<std::int64_t> qualityHistogram(const std::vector<TetShape>& shapes, 
     ++bins[static_cast<std::size_t>(bin)];
   }
   return bins;
+}
+
+std::vector<std::pair<const char*, double>> qualitySummaryFields(const QualitySummary& summary)
+{
+  return { { "TetrahedronCount", static_cast<double>(summary.count) },
+    { "QualityMinimum", summary.minimum },
+    { "QualityMean", summary.mean },
+    { "QualityPercentile1", summary.percentile1 },
+    { "QualityShareBelow0.1", summary.shareBelow01 },
+    { "QualityShareBelow0.3", summary.shareBelow03 },
+    { "MinDihedralAngle", summary.minDihedral },
+    { "MaxDihedralAngle", summary.maxDihedral } };
+}
+
+bool measureMesh(const TetMeshView& mesh, int binCount, MeshQuality& result, std::string& error)
+{
+  const double* sizes = mesh.sizes;
+  for (std::int64_t p = 0; p < mesh.pointCount; ++p)
+  {
+    const double* x = mesh.points + 3 * p;
+    if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
+    {
+      std::ostringstream message;
+      message << "point " << p << " has a non-finite coordinate (" << x[0] << ", " << x[1] << ", "
+              << x[2] << ")";
+      error = message.str();
+      return false;
+    }
+    if (sizes && (!(sizes[p] > 0) || !std::isfinite(sizes[p])))
+    {
+      std::ostringstream message;
+      message << "size array '" << mesh.sizeName << "' has the invalid value " << sizes[p]
+              << " at point " << p << " (sizes must be finite and > 0)";
+      error = message.str();
+      return false;
+    }
+  }
+
+  const auto count = static_cast<std::size_t>(mesh.cellCount);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  result.quality.assign(count, nan);
+  result.minDihedral.assign(count, nan);
+  result.maxDihedral.assign(count, nan);
+  std::vector<TetShape> shapes;
+  shapes.reserve(count);
+  for (std::size_t c = 0; c < count; ++c)
+  {
+    const std::int64_t* ids = mesh.cells + 4 * c;
+    if (ids[0] < 0)
+      continue;
+    const double* x[4];
+    double h[4] = { 1, 1, 1, 1 };
+    for (int i = 0; i < 4; ++i)
+    {
+      x[i] = mesh.points + 3 * ids[i];
+      if (sizes)
+        h[i] = sizes[ids[i]];
+    }
+    const TetShape shape =
+      sizes ? measureTetScaled(x[0], x[1], x[2], x[3], h) : measureTet(x[0], x[1], x[2], x[3]);
+    result.quality[c] = shape.quality;
+    result.minDihedral[c] = shape.minDihedral;
+    result.maxDihedral[c] = shape.maxDihedral;
+    shapes.push_back(shape);
+  }
+  if (shapes.empty())
+  {
+    std::ostringstream message;
+    message << "the input has no tetrahedra (" << mesh.cellCount
+            << " cells, none of type VTK_TETRA)";
+    error = message.str();
+    return false;
+  }
+  result.summary = summarizeQuality(shapes);
+  result.histogram = qualityHistogram(shapes, binCount);
+  return true;
 }
 
 } // namespace tetmesher

@@ -11,6 +11,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace tetmesher
@@ -66,5 +68,36 @@ QualitySummary summarizeQuality(const std::vector<TetShape>& shapes);
 
 // Histogram of Q over [0, 1] in `binCount` equal bins; Q = 1 falls in the last bin.
 std::vector<std::int64_t> qualityHistogram(const std::vector<TetShape>& shapes, int binCount);
+
+// The summary as the field data the filters store and the CLI prints, in their order.
+std::vector<std::pair<const char*, double>> qualitySummaryFields(const QualitySummary& summary);
+
+// Per-cell quality of a mesh, its summary and histogram (vtkTetQuality's and vtkTetMesher's
+// arrays Quality, MinDihedralAngle, MaxDihedralAngle).
+struct MeshQuality
+{
+  std::vector<double> quality;     // per cell; NaN for cells that are not tetrahedra
+  std::vector<double> minDihedral; // per cell, degrees
+  std::vector<double> maxDihedral; // per cell, degrees
+  QualitySummary summary;
+  std::vector<std::int64_t> histogram;
+};
+
+// A mesh to measure: cells[4c..4c+3] are the point ids of cell c in VTK order, cells[4c] < 0
+// for a cell that is not a tetrahedron. `sizes` (optional) is h > 0 per point, named
+// `sizeName` in errors.
+struct TetMeshView
+{
+  const double* points = nullptr;
+  std::int64_t pointCount = 0;
+  const std::int64_t* cells = nullptr;
+  std::int64_t cellCount = 0;
+  const double* sizes = nullptr;
+  std::string sizeName;
+};
+
+// Measures every tetrahedron of a mesh. Returns false with `error` naming the defect (no
+// tetrahedra, a non-finite coordinate, a bad size value) and where it is.
+bool measureMesh(const TetMeshView& mesh, int binCount, MeshQuality& result, std::string& error);
 
 } // namespace tetmesher

@@ -1,0 +1,213 @@
+#include "MeshOptions.h"
+
+#include "SurfaceFiles.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+
+namespace tetmesher
+{
+namespace cli
+{
+namespace
+{
+const char* const kMeshUsage = R"(usage: tetmesher mesh SURFACE -o OUT.vtu [options]
+
+Tetrahedralizes the closed triangulated surface SURFACE. The boundary of the result is
+exactly the input triangles (same points, same coordinates); points 0..n-1 of OUT are the
+input points. Interior points follow the size field h (default: the mean length of the
+boundary edges at each surface point, interpolated inside), then the worst elements are
+improved by flips, edge removal and smoothing.
+
+SURFACE: .stl .obj .ply .vtp .vtk .off          OUT: .vtu or .vtk
+
+options:
+  -o, --output FILE     where to write the mesh (required)
+  --boundary-only       the boundary mesh alone: no interior points, no optimisation
+  --size H              constant wanted edge length H
+  --size-array NAME     wanted edge length from the surface's point array NAME
+  --background FILE     controlling space: any VTK dataset with a point array of sizes
+  --background-array N  that array's name (default h)
+  --size-scale S        multiply every size by S
+  --min-size A, --max-size B   clamp the size field
+  --gradation G         largest size ratio between neighbours one h apart (default 1.5)
+  --no-optimize         skip quality optimisation
+  --passes N            optimisation passes (default 3)
+  --quality-target Q    optimise tets below this quality (default 0.35)
+  --dihedral-target D   then raise the smallest dihedral angles towards D degrees
+                        (default 25; 0: no dihedral stage)
+  --stats               print the quality summary of the result
+  --compress            zlib-compress the arrays of a .vtu (smaller, slower to write)
+  --timings             print the wall time of every stage (start-up, reading, the
+                        mesher's stages, writing)
+  --with-vtk            run through VTK (vtkTetMesher, VTK's reader and writer) even
+                        where the lean path needs no VTK; the same output, slower start
+  --holes               enclosed shells are holes instead of regions of their own
+  --max-steiner N       budget of recovery Steiner points (default 100 + 4 per triangle)
+  --time-limit S        stop with an error after S seconds (default: no limit)
+  --memory-limit MB     refuse a size field whose mesh is estimated above MB megabytes
+                        (default: the memory available; -1: no check)
+  --no-check            skip the input surface checks (faster on known-good surfaces)
+  -q, --quiet           no progress bar
+  -h, --help            this text
+)";
+// The options by kind: flags set a field, the others take the next argument.
+struct Flag
+{
+  const char* name;
+  bool MeshOptions::*field;
+  bool value;
+};
+const Flag kFlags[] = { { "--boundary-only", &MeshOptions::boundaryOnly, true },
+  { "--no-optimize", &MeshOptions::optimize, false },
+  { "--with-vtk", &MeshOptions::withVtk, true },
+  { "--stats", &MeshOptions::stats, true },
+  { "--timings", &MeshOptions::timings, true },
+  { "--compress", &MeshOptions::compress, true },
+  { "--holes", &MeshOptions::holes, true },
+  { "--no-check", &MeshOptions::check, false },
+  { "-q", &MeshOptions::quiet, true },
+  { "--quiet", &MeshOptions::quiet, true } };
+
+struct Text
+{
+  const char* name;
+  std::string MeshOptions::*field;
+};
+const Text kTexts[] = { { "-o", &MeshOptions::output },
+  { "--output", &MeshOptions::output },
+  { "--size-array", &MeshOptions::sizeArray },
+  { "--background", &MeshOptions::background },
+  { "--background-array", &MeshOptions::backgroundArray } };
+
+// A number from `low` up; larger than `high` counts as `high`.
+struct Number
+{
+  const char* name;
+  double MeshOptions::*field;
+  double low, high;
+};
+constexpr double kNoBound = std::numeric_limits<double>::infinity();
+const Number kNumbers[] = { { "--size", &MeshOptions::size, 1e-300, kNoBound },
+  { "--size-scale", &MeshOptions::sizeScale, 1e-300, kNoBound },
+  { "--min-size", &MeshOptions::minSize, 0, kNoBound },
+  { "--max-size", &MeshOptions::maxSize, 0, kNoBound },
+  { "--gradation", &MeshOptions::gradation, 0, kNoBound },
+  { "--quality-target", &MeshOptions::qualityTarget, 0, 1 },
+  { "--passes", &MeshOptions::passes, 0, 100 },
+  { "--dihedral-target", &MeshOptions::dihedralTarget, 0, 70 },
+  { "--time-limit", &MeshOptions::timeLimit, 0, kNoBound },
+  { "--memory-limit", &MeshOptions::memoryLimit, -1, kNoBound } };
+
+template<typename Option, std::size_t N>
+const Option* Find(const Option (&options)[N], const std::string& name)
+{
+  for (const Option& option : options)
+    if (name == option.name)
+      return &option;
+  return nullptr;
+}
+} // namespace
+
+int ParseMeshOptions(int argc, char* argv[], MeshOptions& o)
+{
+  for (int i = 0; i < argc; ++i)
+  {
+    std::string arg = argv[i];
+    const bool hasValue = i + 1 < argc;
+    if (arg == "-h" || arg == "--help")
+    {
+      std::fputs(kMeshUsage, stdout);
+      return 0;
+    }
+    if (const Flag* flag = Find(kFlags, arg))
+      o.*(flag->field) = flag->value;
+    else if (const Text* text = hasValue ? Find(kTexts, arg) : nullptr)
+      o.*(text->field) = argv[++i];
+    else if (const Number* number = hasValue ? Find(kNumbers, arg) : nullptr)
+    {
+      char* end = nullptr;
+      const char* text = argv[++i];
+      const double value = std::strtod(text, &end);
+      if (*end != '\0' || end == text || !(value >= number->low) || !std::isfinite(value))
+      {
+        std::fprintf(stderr,
+          "tetmesher mesh: %s wants a number >= %g, not '%s'\n",
+          arg.c_str(),
+          number->low,
+          text);
+        return 2;
+      }
+      o.*(number->field) = std::min(value, number->high);
+    }
+    else if (arg == "--max-steiner" && i + 1 < argc)
+    {
+      char* end = nullptr;
+      long value = std::strtol(argv[++i], &end, 10);
+      if (*end != '\0' || value < -1 || value > 1000000000)
+      {
+        std::fprintf(
+          stderr, "tetmesher mesh: --max-steiner wants an integer >= -1, not '%s'\n", argv[i]);
+        return 2;
+      }
+      o.maxSteiner = static_cast<int>(value);
+    }
+    else if (!arg.empty() && arg[0] == '-')
+    {
+      std::fprintf(
+        stderr, "tetmesher mesh: unknown or incomplete option '%s'\n\n%s", arg.c_str(), kMeshUsage);
+      return 2;
+    }
+    else if (o.input.empty())
+      o.input = arg;
+    else
+    {
+      std::fprintf(stderr, "tetmesher mesh: one surface at a time ('%s' is extra)\n", arg.c_str());
+      return 2;
+    }
+  }
+  if (o.input.empty() || o.output.empty())
+  {
+    std::fprintf(stderr,
+      "tetmesher mesh: %s\n\n%s",
+      o.input.empty() ? "no input surface" : "no output file (-o OUT.vtu)",
+      kMeshUsage);
+    return 2;
+  }
+  const std::string outExt = LowerExtension(o.output);
+  if (outExt != ".vtu" && outExt != ".vtk")
+  {
+    std::fprintf(stderr,
+      "tetmesher mesh: %s: unknown output type '%s' (use .vtu or .vtk)\n",
+      o.output.c_str(),
+      outExt.c_str());
+    return 2;
+  }
+  return -1;
+}
+
+SurfaceMeshSettings SettingsOf(const MeshOptions& o)
+{
+  SurfaceMeshSettings settings;
+  settings.checkInput = o.check;
+  settings.enclosedShellsAreHoles = o.holes;
+  settings.maximumSteinerPoints = o.maxSteiner;
+  settings.refine = !o.boundaryOnly;
+  settings.sizeScale = o.sizeScale;
+  settings.minSize = o.minSize;
+  settings.maxSize = o.maxSize;
+  settings.gradation = o.gradation;
+  settings.optimize = o.optimize && !o.boundaryOnly;
+  settings.optimizationPasses = static_cast<int>(o.passes);
+  settings.qualityTarget = o.qualityTarget;
+  settings.dihedralTarget = o.dihedralTarget;
+  settings.timeLimit = o.timeLimit;
+  settings.memoryLimit = o.memoryLimit;
+  return settings;
+}
+
+} // namespace cli
+} // namespace tetmesher

@@ -1,0 +1,40 @@
+// The options of `tetmesher mesh`, parsed once for both ways of running it: the lean path
+// (LeanMeshCommand.cxx, no VTK) and the VTK path (MeshCommand.cxx, in libtetmesherVtk.so).
+#pragma once
+
+#include "SurfaceMeshing.h"
+
+#include <chrono>
+#include <string>
+
+namespace tetmesher
+{
+namespace cli
+{
+
+struct MeshOptions
+{
+  std::chrono::steady_clock::time_point processStart; // when `mesh` began, for --timings
+  std::string input, output;
+  bool stats = false, timings = false, compress = false, holes = false, check = true, quiet = false,
+       boundaryOnly = false, optimize = true;
+  bool withVtk = false; // --with-vtk: through vtkTetMesher and VTK's readers and writers
+  int maxSteiner = -1;
+  double passes = 3; // an integer; parsed as the other numbers
+  double timeLimit = 0, memoryLimit = 0, dihedralTarget = 25, size = 0, sizeScale = 1, minSize = 0,
+         maxSize = 0, gradation = 1.5, qualityTarget = 0.35;
+  std::string sizeArray, background, backgroundArray = "h";
+};
+
+// Parses the arguments after `mesh`. Returns -1 when the command should run, else the exit
+// status (0 after --help, 2 on wrong usage, with the message printed).
+int ParseMeshOptions(int argc, char* argv[], MeshOptions& options);
+
+// vtkTetMesher's properties as these options set them (the others keep their defaults).
+SurfaceMeshSettings SettingsOf(const MeshOptions& options);
+
+// The name of the constant size array that --size H gives the surface.
+constexpr const char* kConstantSizeArray = "tetmesher_constant_size";
+
+} // namespace cli
+} // namespace tetmesher

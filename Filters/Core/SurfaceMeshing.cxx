@@ -1,0 +1,228 @@
+#include "SurfaceMeshing.h"
+
+#include "MemoryBudget.h"
+#include "MeshAssembly.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace tetmesher
+{
+namespace
+{
+// The core orients tets with Shewchuk's orient3d > 0; VTK_TETRA wants the opposite (the
+// right-hand normal of points 0,1,2 towards point 3). Swapping points 0 and 1 converts, and
+// swaps the faces opposite them.
+constexpr int kVtkFromCore[4] = { 1, 0, 2, 3 };
+
+void appendStage(std::string& lines, double seconds, const std::string& stage)
+{
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4f\t", seconds);
+  lines += text + stage + "\n";
+}
+} // namespace
+
+SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSettings& settings)
+{
+  SurfaceMeshOutput out;
+  auto lapStart = std::chrono::steady_clock::now();
+  auto lap = [&out, &lapStart](const char* stage)
+  {
+    const auto now = std::chrono::steady_clock::now();
+    appendStage(out.stageTimings, std::chrono::duration<double>(now - lapStart).count(), stage);
+    lapStart = now;
+  };
+  auto fail = [&out](const std::string& message)
+  {
+    out.ok = false;
+    out.error = message;
+    return out;
+  };
+  auto progress = [&input](double value) { return !input.progress || input.progress(value); };
+
+  if (settings.checkInput)
+  {
+    DiagnosisOptions diagnosisOptions;
+    diagnosisOptions.maxRecordsPerKind = 1000;
+    out.diagnosis = diagnoseSurface(
+      input.points, input.pointCount, input.triangles, input.triangleCount, diagnosisOptions);
+    if (!out.diagnosis.ok())
+    {
+      std::string summary = out.diagnosis.summary(10);
+      if (input.triangleIdsAreNotCellIds)
+      {
+        summary += "\n(triangle ids count the triangles of the input's polygons in order; "
+                   "input cell ids differ when the input has vertices, lines or polygons)";
+      }
+      return fail("the input surface cannot be meshed:\n" + summary);
+    }
+    lap("input diagnosis");
+  }
+  bool aborted = !progress(0.05);
+
+  // --- Size field sources ---------------------------------------------------------------
+  VolumeMeshOptions options;
+  if (!input.sizeArrayName.empty() && settings.refine)
+  {
+    if (!input.readSizeArray || !input.readSizeArray(options.inputSizes))
+    {
+      return fail("SizeArrayName names point array '" + input.sizeArrayName +
+        "', which the input surface does not have");
+    }
+    for (std::size_t p = 0; p < options.inputSizes.size(); ++p)
+    {
+      const double h = options.inputSizes[p];
+      if (!(h > 0) || !std::isfinite(h))
+      {
+        std::ostringstream message;
+        message << "size array '" << input.sizeArrayName << "' has the invalid value " << h
+                << " at point " << p << " (sizes must be finite and > 0)";
+        return fail(message.str());
+      }
+    }
+  }
+  std::function<double(const double*)> backgroundSize;
+  if (settings.refine && input.prepareBackground)
+  {
+    const std::string error = input.prepareBackground(backgroundSize);
+    if (!error.empty())
+      return fail("controlling space: " + error);
+    if (options.inputSizes.empty())
+      options.background = backgroundSize;
+  }
+
+  // --- Mesh ------------------------------------------------------------------------------
+  // The surface was checked above (or the user chose not to): not twice.
+  options.boundary.validateInput = false;
+  options.boundary.enclosedShellsAreHoles = settings.enclosedShellsAreHoles;
+  options.boundary.maxSteinerPoints = settings.maximumSteinerPoints;
+  options.boundary.removeSteinerPoints = settings.removeSteinerPoints;
+  options.refine = settings.refine;
+  options.refinement.size.scale = settings.sizeScale;
+  options.refinement.size.minSize = settings.minSize;
+  options.refinement.size.maxSize = settings.maxSize;
+  options.refinement.size.gradation = settings.gradation;
+  options.refinement.size.interpolationPower = settings.interpolationPower;
+  options.optimize = settings.optimize && settings.optimizationPasses > 0;
+  options.optimization.passes = settings.optimizationPasses;
+  options.optimization.qualityTarget = settings.qualityTarget;
+  options.optimization.dihedralTarget = settings.dihedralTarget;
+  options.optimization.measure = settings.measure;
+  options.boundary.maxSeconds = settings.timeLimit;
+  // memoryLimit in MB; 0: what the machine has available now; < 0: no check.
+  options.refinement.memoryLimitBytes = settings.memoryLimit > 0 ? settings.memoryLimit * 1e6
+    : settings.memoryLimit == 0                                  ? availableMemoryBytes()
+                                                                 : 0.0;
+  options.boundary.memoryLimitBytes = options.refinement.memoryLimitBytes;
+  lap("size sources");
+  const auto start = std::chrono::steady_clock::now();
+  bool outOfTime = false;
+  out.mesh = meshVolume(input.points,
+    input.pointCount,
+    input.triangles,
+    input.triangleCount,
+    options,
+    [&](double fraction)
+    {
+      aborted = aborted || !progress(0.05 + 0.85 * fraction);
+      if (settings.timeLimit > 0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
+          settings.timeLimit)
+      {
+        outOfTime = true;
+        return false;
+      }
+      return !aborted;
+    });
+  VolumeMeshResult& result = out.mesh;
+  if (aborted)
+  {
+    return fail("meshing was aborted");
+  }
+  if (outOfTime && !result.ok)
+  {
+    std::ostringstream message;
+    message << "meshing exceeded the time limit of " << settings.timeLimit << " s (" << result.error
+            << ")";
+    return fail(message.str());
+  }
+  if (!result.ok)
+  {
+    return fail(result.error);
+  }
+  for (const auto& [stage, seconds] : result.stageSeconds)
+  {
+    appendStage(out.stageTimings, seconds, stage);
+  }
+  lapStart = std::chrono::steady_clock::now();
+
+  // --- Output arrays ------------------------------------------------------------------------
+  const std::size_t tetCount = result.tets.size() / 4;
+  out.cells.resize(4 * tetCount);
+  for (std::size_t t = 0; t < tetCount; ++t)
+  {
+    for (int i = 0; i < 4; ++i)
+      out.cells[4 * t + i] = result.tets[4 * t + kVtkFromCore[i]];
+  }
+  // Every tet face lying on an input triangle (both sides of an interface triangle).
+  out.inputFaceIds.assign(4 * tetCount, -1);
+  const std::vector<std::int32_t> faceTriangle =
+    tetFaceTriangles(result.tets, input.triangles, input.triangleCount);
+  for (std::size_t t = 0; t < tetCount; ++t)
+  {
+    for (int f = 0; f < 4; ++f)
+    {
+      const std::int32_t tri = faceTriangle[4 * t + f];
+      if (tri >= 0)
+        out.inputFaceIds[4 * t + kVtkFromCore[f]] = input.cellOfTriangle[tri];
+    }
+  }
+  lap("output conversion");
+
+  std::string qualityError;
+  TetMeshView view;
+  view.points = result.points.data();
+  view.pointCount = static_cast<std::int64_t>(result.points.size() / 3);
+  view.cells = out.cells.data();
+  view.cellCount = static_cast<std::int64_t>(tetCount);
+  if (!measureMesh(view, settings.numberOfBins, out.quality, qualityError))
+  {
+    return fail("quality of the result: " + qualityError);
+  }
+  for (const auto& [name, value] : qualitySummaryFields(out.quality.summary))
+    out.fieldData.emplace_back(name, value);
+  out.fieldData.emplace_back("SteinerPointCount", result.steinerPoints);
+  out.fieldData.emplace_back("InteriorPointCount", result.interiorPoints);
+  out.fieldData.emplace_back("RegionCount", result.regionCount);
+  out.fieldData.emplace_back("TriangulatedPolygonCount", input.triangulatedPolygons);
+  out.fieldData.emplace_back("MeshingSeconds", result.seconds);
+  lap("quality arrays");
+
+  // The paper's figure 6 shows the histogram before and after optimisation. Only Q is used:
+  // measureTetForOptimization gives it bit for bit with one arc cosine fewer per tet.
+  std::vector<TetShape> before;
+  before.reserve(result.tetsBeforeOptimization.size() / 4);
+  for (std::size_t t = 0; t + 3 < result.tetsBeforeOptimization.size(); t += 4)
+  {
+    const double* p[4];
+    for (int i = 0; i < 4; ++i)
+      p[i] = &result.points[3 *
+        static_cast<std::size_t>(result.tetsBeforeOptimization[t + kVtkFromCore[i]])];
+    before.push_back(measureTetForOptimization(p[0], p[1], p[2], p[3], nullptr));
+  }
+  if (!before.empty())
+  {
+    out.histogramBefore = qualityHistogram(before, settings.numberOfBins);
+    out.fieldData.emplace_back(
+      "QualityMinimumBeforeOptimization", summarizeQuality(before).minimum);
+  }
+  lap("histograms");
+  progress(1.0);
+  out.ok = true;
+  return out;
+}
+
+} // namespace tetmesher

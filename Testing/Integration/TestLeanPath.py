@@ -1,0 +1,188 @@
+"""The lean `tetmesher mesh` (no VTK loaded) gives what the VTK path gives (run with /usr/bin/python3).
+
+Usage: TestLeanPath.py TETMESHER_EXE CORPUS_DIR TEST_DATA_DIR
+
+For each case the same command runs twice: as it is (the lean path: the core, the own .off/.vtp
+reader and .vtu writer) and with --with-vtk (vtkTetMesher, VTK's readers and writers). Both
+.vtu files are read back with vtkXMLUnstructuredGridReader and compared exactly: points bit
+for bit, cells, every point, cell and field array with its name, type, components and values
+(MeshingSeconds only by name and type: it is a wall time). stdout must be the same but for the
+seconds of the summary line; failures must give the same message and exit status. The dynamic
+loader's log checks that the lean runs load no VTK library and the others do.
+"""
+import os
+import re
+import struct
+import subprocess
+import sys
+import tempfile
+
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkFloatArray
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLPolyDataWriter, vtkXMLUnstructuredGridReader
+
+exe, corpus, data = sys.argv[1], sys.argv[2], sys.argv[3]
+failures = []
+
+
+def run(args, lean):
+    """Runs tetmesher; returns (status, stdout, stderr, VTK libraries loaded)."""
+    env = dict(os.environ, LD_DEBUG="files", LD_DEBUG_OUTPUT=os.path.join(tmp, "ld"))
+    for name in os.listdir(tmp):
+        if name.startswith("ld."):
+            os.remove(os.path.join(tmp, name))
+    command = [exe, *args] if lean else [exe, *args, "--with-vtk"]
+    result = subprocess.run(command, capture_output=True, text=True, timeout=600, env=env)
+    loaded = False
+    for name in os.listdir(tmp):
+        if name.startswith("ld."):
+            with open(os.path.join(tmp, name), errors="replace") as log:
+                loaded = loaded or "libvtk" in log.read()
+    return result.returncode, result.stdout, result.stderr, loaded
+
+
+def raw(array):
+    """The values of a numeric array as (dtype, bytes): equal bit for bit, NaN included."""
+    values = vtk_to_numpy(array)
+    return str(values.dtype), values.tobytes()
+
+
+def arrays(attributes):
+    out = {}
+    for i in range(attributes.GetNumberOfArrays()):
+        array = attributes.GetAbstractArray(i)
+        values = raw(array) if array.IsNumeric() else \
+            [array.GetValue(k) for k in range(array.GetNumberOfValues())]
+        out[array.GetName()] = (array.GetClassName(), array.GetNumberOfComponents(), values, i)
+    return out
+
+
+def read(path):
+    reader = vtkXMLUnstructuredGridReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return reader.GetOutput()
+
+
+def compare_meshes(case, lean_path, vtk_path):
+    a, b = read(lean_path), read(vtk_path)
+    problems = []
+    if a.GetNumberOfPoints() != b.GetNumberOfPoints() or a.GetNumberOfCells() != b.GetNumberOfCells():
+        problems.append(f"{a.GetNumberOfPoints()} points, {a.GetNumberOfCells()} cells vs "
+                        f"{b.GetNumberOfPoints()}, {b.GetNumberOfCells()}")
+    else:
+        pa, pb = a.GetPoints().GetData(), b.GetPoints().GetData()
+        if pa.GetClassName() != pb.GetClassName():
+            problems.append(f"points stored as {pa.GetClassName()} vs {pb.GetClassName()}")
+        if raw(pa) != raw(pb):
+            problems.append("points differ")
+        for name, get in [("connectivity", lambda g: g.GetCells().GetConnectivityArray()),
+                          ("offsets", lambda g: g.GetCells().GetOffsetsArray()),
+                          ("types", lambda g: g.GetCellTypesArray())]:
+            if raw(get(a)) != raw(get(b)):
+                problems.append(f"cell {name} differ")
+    for where, get in [("point", lambda g: g.GetPointData()), ("cell", lambda g: g.GetCellData()),
+                       ("field", lambda g: g.GetFieldData())]:
+        xa, xb = arrays(get(a)), arrays(get(b))
+        if list(xa) != list(xb):
+            problems.append(f"{where} arrays {list(xa)} vs {list(xb)}")
+            continue
+        for name in xa:
+            ca, na, va, ia = xa[name]
+            cb, nb, vb, ib = xb[name]
+            if (ca, na, ia) != (cb, nb, ib):
+                problems.append(f"{where} array {name}: {ca} x{na} at {ia} vs {cb} x{nb} at {ib}")
+            elif name != "MeshingSeconds" and va != vb:
+                problems.append(f"{where} array {name}: values differ")
+    if a.GetCellData().GetScalars() is None or a.GetCellData().GetScalars().GetName() != "Quality":
+        problems.append("Quality is not the active cell scalars")
+    if problems:
+        failures.append(f"{case}: " + "; ".join(problems))
+
+
+def without_seconds(text):
+    return re.sub(r", [0-9.]+ s\n", ", S s\n", text)
+
+
+def case(name, args, expect_lean=True):
+    out_lean = os.path.join(tmp, "lean.vtu")
+    out_vtk = os.path.join(tmp, "vtk.vtu")
+    for path in (out_lean, out_vtk):
+        if os.path.exists(path):
+            os.remove(path)
+    la = [a if a != "OUT" else out_lean for a in args]
+    va = [a if a != "OUT" else out_vtk for a in args]
+    rl, ol, el, loaded_lean = run(la, True)
+    rv, ov, ev, loaded_vtk = run(va, False)
+    if loaded_lean == expect_lean:
+        failures.append(f"{name}: the run without --with-vtk {'loaded' if loaded_lean else 'did not load'} VTK")
+    if not loaded_vtk:
+        failures.append(f"{name}: --with-vtk did not load VTK")
+    if rl != rv or el != ev:
+        failures.append(f"{name}: exit {rl} vs {rv}; stderr\n{el!r}\nvs\n{ev!r}")
+    if without_seconds(ol.replace(out_lean, "OUT")) != without_seconds(ov.replace(out_vtk, "OUT")):
+        failures.append(f"{name}: stdout\n{ol}vs\n{ov}")
+    if rl == 0 and rv == 0:
+        compare_meshes(name, out_lean, out_vtk)
+    print(f"{name}: {'lean' if not loaded_lean else 'VTK'} path, exit {rl}", flush=True)
+
+
+def d(name):
+    return os.path.join(corpus, name)
+
+
+with tempfile.TemporaryDirectory() as tmp:
+    # A surface with a point array of sizes, in a .vtp written by VTK (appended raw).
+    reader = vtkXMLPolyDataReader()
+    reader.SetFileName(d("torus.vtp"))
+    reader.Update()
+    torus = reader.GetOutput()
+    sizes = vtkFloatArray()
+    sizes.SetName("h")
+    for p in range(torus.GetNumberOfPoints()):
+        x, y, z = torus.GetPoint(p)
+        sizes.InsertNextValue(0.08 + 0.06 * (x + 1.35) / 2.7)
+    torus.GetPointData().AddArray(sizes)
+    sized = os.path.join(tmp, "torus-sized.vtp")
+    writer = vtkXMLPolyDataWriter()
+    writer.SetInputData(torus)
+    writer.SetDataModeToAppended()
+    writer.SetEncodeAppendedData(False)
+    writer.SetCompressorTypeToNone()
+    writer.SetFileName(sized)
+    writer.Write()
+
+    case("star.off boundary only", ["mesh", d("star.off"), "-o", "OUT", "-q", "--boundary-only"])
+    case("star.off", ["mesh", d("star.off"), "-o", "OUT", "-q", "--stats"])
+    case("sphere.off", ["mesh", d("sphere.off"), "-o", "OUT", "-q"])
+    case("fandisk.off boundary only", ["mesh", d("fandisk.off"), "-o", "OUT", "-q", "--boundary-only"])
+    case("cube.vtp --size 0.2 --stats", ["mesh", d("cube.vtp"), "-o", "OUT", "-q", "--size", "0.2", "--stats"])
+    case("cube.vtp --compress", ["mesh", d("cube.vtp"), "-o", "OUT", "-q", "--compress"])
+    case("nested_spheres.vtp (2 regions)", ["mesh", d("nested_spheres.vtp"), "-o", "OUT", "-q"])
+    case("nested_spheres.vtp --holes", ["mesh", d("nested_spheres.vtp"), "-o", "OUT", "-q", "--holes"])
+    case("tori_tangle.vtp boundary only", ["mesh", d("tori_tangle.vtp"), "-o", "OUT", "-q", "--boundary-only"])
+    case("alternator.vtp boundary only", ["mesh", d("alternator.vtp"), "-o", "OUT", "-q", "--boundary-only"])
+    case("torus.vtp --no-optimize --gradation 1.3", ["mesh", d("torus.vtp"), "-o", "OUT", "-q",
+                                                     "--no-optimize", "--gradation", "1.3"])
+    case("torus with a size array", ["mesh", sized, "-o", "OUT", "-q", "--size-array", "h",
+                                     "--size-scale", "1.5", "--max-size", "0.15", "--stats"])
+    case("cubes.off --dihedral-target 0", ["mesh", d("cubes.off"), "-o", "OUT", "-q",
+                                           "--dihedral-target", "0", "--passes", "2"])
+    # Failures: same message, same status.
+    case("missing size array", ["mesh", d("sphere.off"), "-o", "OUT", "-q", "--size-array", "nope"])
+    case("open box", ["mesh", os.path.join(data, "defects", "open-box.off"), "-o", "OUT", "-q"])
+    case("NaN coordinate (ascii .vtp)", ["mesh", os.path.join(data, "defects", "nan-coordinate.vtp"),
+                                         "-o", "OUT", "-q"])
+    case("memory limit", ["mesh", d("cube.vtp"), "-o", "OUT", "-q", "--size", "0.02",
+                          "--memory-limit", "100"])
+    case("no such file", ["mesh", d("nosuch.off"), "-o", "OUT", "-q"])
+    case("unwritable output", ["mesh", d("star.off"), "-o", os.path.join(tmp, "no-such-dir", "x.vtu"), "-q"])
+    # Polygons to triangulate are left to VTK, as is .stl.
+    case("keyhole polygon (VTK path)", ["mesh", os.path.join(data, "defects", "keyhole-polygon.off"),
+                                        "-o", "OUT", "-q"], expect_lean=False)
+
+if failures:
+    print("\n\n".join(failures))
+    print(f"TestLeanPath: {len(failures)} failure(s)")
+    sys.exit(1)
+print("TestLeanPath: all checks passed")
