@@ -167,20 +167,42 @@ void polishPosition(Context& ctx,
 {
   const double qFloor = std::min(old.q, ctx.floorQ);
   const double dihFloor = std::min(old.dih, ctx.floorDih);
-  auto objective = [&]()
+  // The objective, exact when it exceeds `bound`; otherwise some value <= bound: the search
+  // only compares against its best so far, so a position is dropped at its first tet at or
+  // below that (tried first next time: most positions are rejected by the same tet), not
+  // after measuring the whole cone. Same decisions as the full evaluation, a fraction of it.
+  thread_local std::vector<std::size_t> order;
+  order.resize(cone.size());
+  for (std::size_t i = 0; i < cone.size(); ++i)
+    order[i] = i;
+  auto objective = [&](double bound)
   {
     WorstOf w;
-    for (const TetVertices& nt : cone)
+    for (std::size_t k = 0; k < order.size(); ++k)
     {
-      if (!ctx.positive(nt[0], nt[1], nt[2], nt[3]))
-        return -kInf;
-      w.add(ctx.eval(nt));
+      const TetVertices& nt = cone[order[k]];
+      bool reject = !ctx.positive(nt[0], nt[1], nt[2], nt[3]);
+      if (!reject)
+      {
+        const TetEval e = ctx.eval(nt);
+        w.add(e);
+        // Scores are in [0,1], so a guarded measure below its floor puts the objective
+        // (score - 2) at -1 or below.
+        reject = e.score <= bound || ((e.q < qFloor || e.dih < dihFloor) && bound >= -1);
+      }
+      if (reject)
+      {
+        std::rotate(order.begin(),
+          order.begin() + static_cast<std::ptrdiff_t>(k),
+          order.begin() + static_cast<std::ptrdiff_t>(k) + 1);
+        return w.score <= bound ? w.score : bound; // <= bound, never above it
+      }
     }
     // Guarded measures below their floor: worse than any position that keeps them.
     return w.q >= qFloor && w.dih >= dihFloor ? w.score : w.score - 2;
   };
   double* p = &ctx.mesh.coords[3 * static_cast<std::size_t>(xv)];
-  double best = objective();
+  double best = objective(-kInf);
   static const double kDirs[6][3] = {
     { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 }, { 0, 0, 1 }, { 0, 0, -1 }
   };
@@ -193,7 +215,7 @@ void polishPosition(Context& ctx,
     {
       for (int k = 0; k < 3; ++k)
         p[k] = from[k] + step * d[k];
-      const double v = objective();
+      const double v = objective(best);
       if (v > best)
       {
         best = v;
