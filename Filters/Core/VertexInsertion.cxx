@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -25,13 +26,20 @@ bool growCavity(Context& ctx,
   LocalMove* validOut = nullptr)
 {
   TetMesh& m = ctx.mesh;
-  std::vector<TetId> cavity = { t };
+  // Scratch reused between calls: an insertion search grows 10-20 cavities.
+  thread_local std::vector<TetId> cavity;
+  cavity.assign(1, t);
   // Boundary faces of the cavity: (tet, face) and the tet's index in `cavity`.
-  std::vector<std::pair<TetId, int>> faces;
-  std::vector<std::size_t> faceOwner;
-  std::vector<VertexId> faceVertices;
-  std::vector<std::array<VertexId, 2>> edges;
-  std::vector<TetVertices> newTets;
+  thread_local std::vector<std::pair<TetId, int>> faces;
+  thread_local std::vector<std::size_t> faceOwner;
+  thread_local std::vector<std::array<VertexId, 2>> edges;
+  thread_local std::vector<TetVertices> newTets;
+  // Per vertex: the iteration stamp of the last boundary face it was seen on (the check
+  // that no cavity vertex vanishes, without sorting the faces' vertices).
+  thread_local std::vector<std::uint32_t> seenOnFace;
+  thread_local std::uint32_t stamp = 0;
+  if (seenOnFace.size() < static_cast<std::size_t>(m.vertexCount()))
+    seenOnFace.resize(static_cast<std::size_t>(m.vertexCount()), 0);
   // The new tet over face f of cavity[i] is the same in every iteration that has that face
   // (the cavity only grows, xv does not move): evaluated once, in slot 4 * i + f.
   struct Candidate
@@ -39,7 +47,8 @@ bool growCavity(Context& ctx,
     bool known = false, positive = false;
     TetEval eval;
   };
-  std::vector<Candidate> candidates;
+  thread_local std::vector<Candidate> candidates;
+  candidates.clear();
   bool found = false;
   for (int iter = 0; iter < maxCavity; ++iter)
   {
@@ -61,14 +70,17 @@ bool growCavity(Context& ctx,
       }
     }
     // A cavity vertex on no boundary face would vanish from the mesh.
-    faceVertices.clear();
+    if (++stamp == 0)
+    {
+      std::fill(seenOnFace.begin(), seenOnFace.end(), 0);
+      stamp = 1;
+    }
     for (const auto& [c, f] : faces)
       for (int k = 0; k < 3; ++k)
-        faceVertices.push_back(m.vertex(c, kFaceVertices[f][k]));
-    std::sort(faceVertices.begin(), faceVertices.end());
+        seenOnFace[static_cast<std::size_t>(m.vertex(c, kFaceVertices[f][k]))] = stamp;
     for (TetId c : cavity)
       for (int i = 0; i < 4; ++i)
-        if (!std::binary_search(faceVertices.begin(), faceVertices.end(), m.vertex(c, i)))
+        if (seenOnFace[static_cast<std::size_t>(m.vertex(c, i))] != stamp)
           return found;
     candidates.resize(4 * cavity.size());
     newTets.clear();
