@@ -94,14 +94,24 @@ inline TetEval measureForOptimization(const double* a,
   static constexpr int kEdge[6][4] = {
     { 0, 1, 2, 3 }, { 0, 2, 1, 3 }, { 0, 3, 1, 2 }, { 1, 2, 0, 3 }, { 1, 3, 0, 2 }, { 2, 3, 0, 1 }
   };
-  double lowCosine = 2.0, longest = 0.0;
+  // With one h at the four vertices (a constant size field) the longest scaled edge is the
+  // longest edge over h: 0.5 * (l/h + l/h) is l/h exactly, and sqrt and division by h > 0
+  // are monotone, so sqrt(max l^2) / h is the same double as max(0.5 * (l/h + l/h)), for
+  // one square root and one division instead of six and twelve.
+  const bool uniform = !h || (h[0] == h[1] && h[0] == h[2] && h[0] == h[3]);
+  double lowCosine = 2.0, longest = 0.0, longestSquared = 0.0;
   bool degenerate = false;
   for (const auto& E : kEdge)
   {
     double u[3];
     sub(p[E[0]], p[E[1]], u);
-    const double l = std::sqrt(dot(u, u));
-    longest = std::max(longest, h ? 0.5 * (l / h[E[0]] + l / h[E[1]]) : l);
+    if (uniform)
+      longestSquared = std::max(longestSquared, dot(u, u));
+    else
+    {
+      const double l = std::sqrt(dot(u, u));
+      longest = std::max(longest, 0.5 * (l / h[E[0]] + l / h[E[1]]));
+    }
     const double nk = normalLength[E[2]], nl = normalLength[E[3]];
     if (nk > 0 && nl > 0)
       lowCosine =
@@ -114,12 +124,20 @@ inline TetEval measureForOptimization(const double* a,
     minDihedral = std::min(minDihedral, 180.0 - std::acos(lowCosine) * 57.29577951308232);
   if (degenerate)
     minDihedral = std::min(minDihedral, 0.0);
+  if (uniform)
+    longest = h ? std::sqrt(longestSquared) / h[0] : std::sqrt(longestSquared);
   double inradius = areaSum > 0 ? 3.0 * volume / areaSum : 0.0;
   if (h)
   {
     double inverseSum = 0.0;
-    for (int i = 0; i < 4; ++i)
-      inverseSum += 1.0 / h[i];
+    if (uniform)
+    {
+      const double inverse = 1.0 / h[0];
+      inverseSum = ((inverse + inverse) + inverse) + inverse;
+    }
+    else
+      for (int i = 0; i < 4; ++i)
+        inverseSum += 1.0 / h[i];
     inradius = inradius * inverseSum / 4.0;
   }
   e.dih = minDihedral;
