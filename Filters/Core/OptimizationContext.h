@@ -69,12 +69,12 @@ inline TetEval measureForOptimization(const double* a,
   };
   auto dot = [](const double* u, const double* v)
   { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
-  double ab[3], ac[3], ad[3], x[3];
-  sub(b, a, ab);
-  sub(c, a, ac);
-  sub(d, a, ad);
-  cross(ac, ad, x);
-  const double volume = dot(ab, x) / 6.0;
+  // The edges from a (b - a, c - a, d - a), and the volume as measureRaw computes it.
+  double fromA[3][3], x[3];
+  for (int i = 0; i < 3; ++i)
+    sub(p[i + 1], a, fromA[i]);
+  cross(fromA[1], fromA[2], x);
+  const double volume = dot(fromA[0], x) / 6.0;
   TetEval e;
   if (!(volume > 0))
     return e;
