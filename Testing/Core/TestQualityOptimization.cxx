@@ -683,3 +683,35 @@ TEST(QualityOptimization, InlinedMeasureMatchesTetQuality)
   }
   EXPECT_GT(positive, 10000); // both orientations were exercised
 }
+
+// The dihedral stage starts from the Q stage's quality cache (Context::adoptCache): every
+// entry it takes over must be what measuring the tet anew gives under its own measure (the
+// scores differ between the stages), and the Context it took them from must not keep them.
+TEST(QualityOptimization, AdoptedCacheMatchesFreshMeasures)
+{
+  RegionMesh rm = jitteredGridCube(4);
+  OptimizationOptions qOptions, dihOptions;
+  dihOptions.measure = QualityMeasure::MinDihedral;
+  optimization::Context first(rm, qOptions, nullptr);
+  optimization::Context second(rm, dihOptions, nullptr);
+  int live = 0;
+  for (TetId t = 0; t < rm.mesh.tetCapacity(); ++t)
+    if (!rm.mesh.isDeleted(t))
+    {
+      first.quality(t);
+      ++live;
+    }
+  ASSERT_GT(live, 100);
+  second.adoptCache(first);
+  for (TetId t = 0; t < rm.mesh.tetCapacity(); ++t)
+  {
+    if (rm.mesh.isDeleted(t))
+      continue;
+    const optimization::TetEval adopted = second.quality(t), fresh = second.evalTet(t);
+    ASSERT_EQ(adopted.score, fresh.score) << t;
+    ASSERT_EQ(adopted.q, fresh.q) << t;
+    ASSERT_EQ(adopted.dih, fresh.dih) << t;
+    ASSERT_NE(adopted.score, adopted.q) << t; // the two measures do differ here
+    ASSERT_EQ(first.quality(t).score, first.evalTet(t).score) << t;
+  }
+}
