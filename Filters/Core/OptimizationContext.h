@@ -214,6 +214,18 @@ public:
     return cache_[i];
   }
   void invalidateAll() const { std::fill(cacheValid_.begin(), cacheValid_.end(), 0); }
+  // Caches e as tet t's measure; e must be what evalTet(t) gives now (e.g. from a trial).
+  void store(TetId t, const TetEval& e) const
+  {
+    const std::size_t i = static_cast<std::size_t>(t);
+    if (i >= cacheValid_.size())
+    {
+      cacheValid_.resize(static_cast<std::size_t>(mesh.tetCapacity()), 0);
+      cache_.resize(static_cast<std::size_t>(mesh.tetCapacity()));
+    }
+    cache_[i] = e;
+    cacheValid_[i] = 1;
+  }
   // Takes over the cache of `other`, a Context on the same mesh and sizes that may drive by
   // another measure (the next stage of optimizeMesh): Q and the angle do not depend on the
   // measure, so only the scores are redone, and the mesh is not measured again.
