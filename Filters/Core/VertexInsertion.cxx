@@ -29,6 +29,17 @@ bool growCavity(Context& ctx,
   // Scratch reused between calls: an insertion search grows 10-20 cavities.
   thread_local std::vector<TetId> cavity;
   cavity.assign(1, t);
+  // Per tet slot: the stamp of the call whose cavity holds it (membership in O(1)).
+  thread_local std::vector<std::uint32_t> inCavity;
+  thread_local std::uint32_t cavityStamp = 0;
+  if (inCavity.size() < static_cast<std::size_t>(m.tetCapacity()))
+    inCavity.resize(static_cast<std::size_t>(m.tetCapacity()), 0);
+  if (++cavityStamp == 0)
+  {
+    std::fill(inCavity.begin(), inCavity.end(), 0);
+    cavityStamp = 1;
+  }
+  inCavity[static_cast<std::size_t>(t)] = cavityStamp;
   // Boundary faces of the cavity: (tet, face) and the tet's index in `cavity`.
   thread_local std::vector<std::pair<TetId, int>> faces;
   thread_local std::vector<std::size_t> faceOwner;
@@ -60,7 +71,7 @@ bool growCavity(Context& ctx,
       for (int f = 0; f < 4; ++f)
       {
         FaceRef n = m.neighbor(c, f);
-        if (n == kNoNeighbor || std::find(cavity.begin(), cavity.end(), faceTet(n)) == cavity.end())
+        if (n == kNoNeighbor || inCavity[static_cast<std::size_t>(faceTet(n))] != cavityStamp)
         {
           faces.push_back({ c, f });
           faceOwner.push_back(ci);
@@ -161,6 +172,7 @@ bool growCavity(Context& ctx,
     if (worst == faces.size() || doomed)
       break;
     cavity.push_back(faceTet(m.neighbor(faces[worst].first, faces[worst].second)));
+    inCavity[static_cast<std::size_t>(cavity.back())] = cavityStamp;
   }
   return found;
 }
