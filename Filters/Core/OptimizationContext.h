@@ -9,6 +9,7 @@
 #include "TetQuality.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -42,6 +43,109 @@ struct WorstOf
   }
 };
 
+// measureTetForOptimization (TetQuality.h), inlined and without what the optimiser does not
+// use (the largest angle, the search for each edge's two faces): the optimiser's inner loops
+// are mostly this. The same arithmetic in the same order, so Q and the smallest dihedral
+// angle are the same bit for bit (the core is built with -ffp-contract=off; tested). Q and
+// the angle are 0 for a tet that is not positive in VTK's orientation; score is left 0.
+inline TetEval measureForOptimization(const double* a,
+  const double* b,
+  const double* c,
+  const double* d,
+  const double* h)
+{
+  const double* p[4] = { a, b, c, d };
+  auto sub = [](const double* u, const double* v, double* r)
+  {
+    r[0] = u[0] - v[0];
+    r[1] = u[1] - v[1];
+    r[2] = u[2] - v[2];
+  };
+  auto cross = [](const double* u, const double* v, double* r)
+  {
+    r[0] = u[1] * v[2] - u[2] * v[1];
+    r[1] = u[2] * v[0] - u[0] * v[2];
+    r[2] = u[0] * v[1] - u[1] * v[0];
+  };
+  auto dot = [](const double* u, const double* v)
+  { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
+  // The edges from a (b - a, c - a, d - a), and the volume as measureRaw computes it.
+  double fromA[3][3], x[3];
+  for (int i = 0; i < 3; ++i)
+    sub(p[i + 1], a, fromA[i]);
+  cross(fromA[1], fromA[2], x);
+  const double volume = dot(fromA[0], x) / 6.0;
+  TetEval e;
+  if (!(volume > 0))
+    return e;
+  static constexpr int kFaces[4][3] = { { 1, 2, 3 }, { 0, 3, 2 }, { 0, 1, 3 }, { 0, 2, 1 } };
+  double normal[4][3], normalLength[4];
+  double areaSum = 0;
+  for (int f = 0; f < 4; ++f)
+  {
+    double u[3], v[3];
+    sub(p[kFaces[f][1]], p[kFaces[f][0]], u);
+    sub(p[kFaces[f][2]], p[kFaces[f][0]], v);
+    cross(u, v, normal[f]);
+    normalLength[f] = std::sqrt(dot(normal[f], normal[f]));
+    areaSum += 0.5 * normalLength[f];
+  }
+  // Edge (i,j) and the faces k < l opposite the other two vertices, as measureRaw orders them.
+  static constexpr int kEdge[6][4] = {
+    { 0, 1, 2, 3 }, { 0, 2, 1, 3 }, { 0, 3, 1, 2 }, { 1, 2, 0, 3 }, { 1, 3, 0, 2 }, { 2, 3, 0, 1 }
+  };
+  // With one h at the four vertices (a constant size field) the longest scaled edge is the
+  // longest edge over h: 0.5 * (l/h + l/h) is l/h exactly, and sqrt and division by h > 0
+  // are monotone, so sqrt(max l^2) / h is the same double as max(0.5 * (l/h + l/h)), for
+  // one square root and one division instead of six and twelve.
+  const bool uniform = !h || (h[0] == h[1] && h[0] == h[2] && h[0] == h[3]);
+  double lowCosine = 2.0, longest = 0.0, longestSquared = 0.0;
+  bool degenerate = false;
+  for (const auto& E : kEdge)
+  {
+    double u[3];
+    sub(p[E[0]], p[E[1]], u);
+    if (uniform)
+      longestSquared = std::max(longestSquared, dot(u, u));
+    else
+    {
+      const double l = std::sqrt(dot(u, u));
+      longest = std::max(longest, 0.5 * (l / h[E[0]] + l / h[E[1]]));
+    }
+    const double nk = normalLength[E[2]], nl = normalLength[E[3]];
+    if (nk > 0 && nl > 0)
+      lowCosine =
+        std::min(lowCosine, std::clamp(dot(normal[E[2]], normal[E[3]]) / (nk * nl), -1.0, 1.0));
+    else
+      degenerate = true;
+  }
+  double minDihedral = 180.0;
+  if (lowCosine <= 1.0)
+    minDihedral = std::min(minDihedral, 180.0 - std::acos(lowCosine) * 57.29577951308232);
+  if (degenerate)
+    minDihedral = std::min(minDihedral, 0.0);
+  if (uniform)
+    longest = h ? std::sqrt(longestSquared) / h[0] : std::sqrt(longestSquared);
+  double inradius = areaSum > 0 ? 3.0 * volume / areaSum : 0.0;
+  if (h)
+  {
+    double inverseSum = 0.0;
+    if (uniform)
+    {
+      const double inverse = 1.0 / h[0];
+      inverseSum = ((inverse + inverse) + inverse) + inverse;
+    }
+    else
+      for (int i = 0; i < 4; ++i)
+        inverseSum += 1.0 / h[i];
+    inradius = inradius * inverseSum / 4.0;
+  }
+  e.dih = minDihedral;
+  if (longest > 0)
+    e.q = std::min(1.0, kQualityScale * inradius / longest);
+  return e;
+}
+
 // A topological move found but not applied: replace oldTets by newTets (all positive).
 struct LocalMove
 {
@@ -72,20 +176,18 @@ public:
 
   TetEval eval(VertexId a, VertexId b, VertexId c, VertexId d) const
   {
-    // TetMesh tets are positive in Shewchuk's sign; measureTet expects VTK's: swap a and b.
-    TetShape s;
+    // TetMesh tets are positive in Shewchuk's sign; the measure expects VTK's: swap a and b.
+    double hh[4];
     if (size)
     {
       const std::vector<double>& h = *size;
-      double hh[4] = { h[b], h[a], h[c], h[d] };
-      s = measureTetForOptimization(P(b), P(a), P(c), P(d), hh);
+      hh[0] = h[b];
+      hh[1] = h[a];
+      hh[2] = h[c];
+      hh[3] = h[d];
     }
-    else
-      s = measureTetForOptimization(P(b), P(a), P(c), P(d), nullptr);
-    TetEval e;
-    e.q = s.signedVolume > 0 ? s.quality : 0;
-    e.dih = s.signedVolume > 0 ? s.minDihedral : 0;
-    e.score = options.measure == QualityMeasure::PaperQ ? e.q : e.dih / kRegularDihedral;
+    TetEval e = measureForOptimization(P(b), P(a), P(c), P(d), size ? hh : nullptr);
+    e.score = scoreOf(e);
     return e;
   }
   TetEval eval(const TetVertices& t) const { return eval(t[0], t[1], t[2], t[3]); }
@@ -112,6 +214,34 @@ public:
     return cache_[i];
   }
   void invalidateAll() const { std::fill(cacheValid_.begin(), cacheValid_.end(), 0); }
+  // Caches e as tet t's measure; e must be what evalTet(t) gives now (e.g. from a trial).
+  void store(TetId t, const TetEval& e) const
+  {
+    const std::size_t i = static_cast<std::size_t>(t);
+    if (i >= cacheValid_.size())
+    {
+      cacheValid_.resize(static_cast<std::size_t>(mesh.tetCapacity()), 0);
+      cache_.resize(static_cast<std::size_t>(mesh.tetCapacity()));
+    }
+    cache_[i] = e;
+    cacheValid_[i] = 1;
+  }
+  // Takes over the cache of `other`, a Context on the same mesh and sizes that may drive by
+  // another measure (the next stage of optimizeMesh): Q and the angle do not depend on the
+  // measure, so only the scores are redone, and the mesh is not measured again.
+  void adoptCache(Context& other)
+  {
+    cache_.swap(other.cache_);
+    cacheValid_.swap(other.cacheValid_);
+    other.invalidateAll();
+    for (std::size_t i = 0; i < cache_.size(); ++i)
+      if (cacheValid_[i])
+        cache_[i].score = scoreOf(cache_[i]);
+  }
+  double scoreOf(const TetEval& e) const
+  {
+    return options.measure == QualityMeasure::PaperQ ? e.q : e.dih / kRegularDihedral;
+  }
   void invalidate(TetId t) const
   {
     if (static_cast<std::size_t>(t) < cacheValid_.size())

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -25,13 +26,31 @@ bool growCavity(Context& ctx,
   LocalMove* validOut = nullptr)
 {
   TetMesh& m = ctx.mesh;
-  std::vector<TetId> cavity = { t };
+  // Scratch reused between calls: an insertion search grows 10-20 cavities.
+  thread_local std::vector<TetId> cavity;
+  cavity.assign(1, t);
+  // Per tet slot: the stamp of the call whose cavity holds it (membership in O(1)).
+  thread_local std::vector<std::uint32_t> inCavity;
+  thread_local std::uint32_t cavityStamp = 0;
+  if (inCavity.size() < static_cast<std::size_t>(m.tetCapacity()))
+    inCavity.resize(static_cast<std::size_t>(m.tetCapacity()), 0);
+  if (++cavityStamp == 0)
+  {
+    std::fill(inCavity.begin(), inCavity.end(), 0);
+    cavityStamp = 1;
+  }
+  inCavity[static_cast<std::size_t>(t)] = cavityStamp;
   // Boundary faces of the cavity: (tet, face) and the tet's index in `cavity`.
-  std::vector<std::pair<TetId, int>> faces;
-  std::vector<std::size_t> faceOwner;
-  std::vector<VertexId> faceVertices;
-  std::vector<std::array<VertexId, 2>> edges;
-  std::vector<TetVertices> newTets;
+  thread_local std::vector<std::pair<TetId, int>> faces;
+  thread_local std::vector<std::size_t> faceOwner;
+  thread_local std::vector<std::array<VertexId, 2>> edges;
+  thread_local std::vector<TetVertices> newTets;
+  // Per vertex: the iteration stamp of the last boundary face it was seen on (the check
+  // that no cavity vertex vanishes, without sorting the faces' vertices).
+  thread_local std::vector<std::uint32_t> seenOnFace;
+  thread_local std::uint32_t stamp = 0;
+  if (seenOnFace.size() < static_cast<std::size_t>(m.vertexCount()))
+    seenOnFace.resize(static_cast<std::size_t>(m.vertexCount()), 0);
   // The new tet over face f of cavity[i] is the same in every iteration that has that face
   // (the cavity only grows, xv does not move): evaluated once, in slot 4 * i + f.
   struct Candidate
@@ -39,7 +58,8 @@ bool growCavity(Context& ctx,
     bool known = false, positive = false;
     TetEval eval;
   };
-  std::vector<Candidate> candidates;
+  thread_local std::vector<Candidate> candidates;
+  candidates.clear();
   bool found = false;
   for (int iter = 0; iter < maxCavity; ++iter)
   {
@@ -51,7 +71,7 @@ bool growCavity(Context& ctx,
       for (int f = 0; f < 4; ++f)
       {
         FaceRef n = m.neighbor(c, f);
-        if (n == kNoNeighbor || std::find(cavity.begin(), cavity.end(), faceTet(n)) == cavity.end())
+        if (n == kNoNeighbor || inCavity[static_cast<std::size_t>(faceTet(n))] != cavityStamp)
         {
           faces.push_back({ c, f });
           faceOwner.push_back(ci);
@@ -61,14 +81,17 @@ bool growCavity(Context& ctx,
       }
     }
     // A cavity vertex on no boundary face would vanish from the mesh.
-    faceVertices.clear();
+    if (++stamp == 0)
+    {
+      std::fill(seenOnFace.begin(), seenOnFace.end(), 0);
+      stamp = 1;
+    }
     for (const auto& [c, f] : faces)
       for (int k = 0; k < 3; ++k)
-        faceVertices.push_back(m.vertex(c, kFaceVertices[f][k]));
-    std::sort(faceVertices.begin(), faceVertices.end());
+        seenOnFace[static_cast<std::size_t>(m.vertex(c, kFaceVertices[f][k]))] = stamp;
     for (TetId c : cavity)
       for (int i = 0; i < 4; ++i)
-        if (!std::binary_search(faceVertices.begin(), faceVertices.end(), m.vertex(c, i)))
+        if (seenOnFace[static_cast<std::size_t>(m.vertex(c, i))] != stamp)
           return found;
     candidates.resize(4 * cavity.size());
     newTets.clear();
@@ -149,6 +172,7 @@ bool growCavity(Context& ctx,
     if (worst == faces.size() || doomed)
       break;
     cavity.push_back(faceTet(m.neighbor(faces[worst].first, faces[worst].second)));
+    inCavity[static_cast<std::size_t>(cavity.back())] = cavityStamp;
   }
   return found;
 }
@@ -167,20 +191,42 @@ void polishPosition(Context& ctx,
 {
   const double qFloor = std::min(old.q, ctx.floorQ);
   const double dihFloor = std::min(old.dih, ctx.floorDih);
-  auto objective = [&]()
+  // The objective, exact when it exceeds `bound`; otherwise some value <= bound: the search
+  // only compares against its best so far, so a position is dropped at its first tet at or
+  // below that (tried first next time: most positions are rejected by the same tet), not
+  // after measuring the whole cone. Same decisions as the full evaluation, a fraction of it.
+  thread_local std::vector<std::size_t> order;
+  order.resize(cone.size());
+  for (std::size_t i = 0; i < cone.size(); ++i)
+    order[i] = i;
+  auto objective = [&](double bound)
   {
     WorstOf w;
-    for (const TetVertices& nt : cone)
+    for (std::size_t k = 0; k < order.size(); ++k)
     {
-      if (!ctx.positive(nt[0], nt[1], nt[2], nt[3]))
-        return -kInf;
-      w.add(ctx.eval(nt));
+      const TetVertices& nt = cone[order[k]];
+      bool reject = !ctx.positive(nt[0], nt[1], nt[2], nt[3]);
+      if (!reject)
+      {
+        const TetEval e = ctx.eval(nt);
+        w.add(e);
+        // Scores are in [0,1], so a guarded measure below its floor puts the objective
+        // (score - 2) at -1 or below.
+        reject = e.score <= bound || ((e.q < qFloor || e.dih < dihFloor) && bound >= -1);
+      }
+      if (reject)
+      {
+        std::rotate(order.begin(),
+          order.begin() + static_cast<std::ptrdiff_t>(k),
+          order.begin() + static_cast<std::ptrdiff_t>(k) + 1);
+        return w.score <= bound ? w.score : bound; // <= bound, never above it
+      }
     }
     // Guarded measures below their floor: worse than any position that keeps them.
     return w.q >= qFloor && w.dih >= dihFloor ? w.score : w.score - 2;
   };
   double* p = &ctx.mesh.coords[3 * static_cast<std::size_t>(xv)];
-  double best = objective();
+  double best = objective(-kInf);
   static const double kDirs[6][3] = {
     { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 }, { 0, 0, 1 }, { 0, 0, -1 }
   };
@@ -193,7 +239,7 @@ void polishPosition(Context& ctx,
     {
       for (int k = 0; k < 3; ++k)
         p[k] = from[k] + step * d[k];
-      const double v = objective();
+      const double v = objective(best);
       if (v > best)
       {
         best = v;

@@ -36,7 +36,10 @@ namespace
 struct SmoothingScratch
 {
   std::vector<double> score, trialScore; // per star tet: at the current / the trial position
-  std::vector<std::size_t> order;        // star indices, worst current score first
+  // The whole measures behind score and trialScore: on success they go to the quality
+  // cache, which the optimiser's requeueing of the ball reads next (no second measure).
+  std::vector<TetEval> eval, trialEval;
+  std::vector<std::size_t> order; // star indices, worst current score first
   std::vector<std::array<double, 3>> grads;
 };
 
@@ -67,6 +70,7 @@ bool tryPosition(const Context& ctx,
     if (!(e.score > scoreAbove) || e.q < qFloor || e.dih < dihFloor)
       return false;
     sc.trialScore[i] = e.score;
+    sc.trialEval[i] = e;
     now.add(e);
   }
   return true;
@@ -95,12 +99,15 @@ bool smoothVertex(Context& ctx, VertexId v, std::vector<TetId>& star)
   WorstOf origMin;
   sc.score.resize(star.size());
   sc.trialScore.resize(star.size());
+  sc.eval.resize(star.size());
+  sc.trialEval.resize(star.size());
   sc.order.resize(star.size());
   for (std::size_t i = 0; i < star.size(); ++i)
   {
     const TetEval e = ctx.quality(star[i]);
     origMin.add(e);
     sc.score[i] = e.score;
+    sc.eval[i] = e;
     sc.order[i] = i;
   }
   rankStar(sc);
@@ -174,6 +181,7 @@ bool smoothVertex(Context& ctx, VertexId v, std::vector<TetId>& star)
       cur = cand;
       curMin = s;
       sc.score.swap(sc.trialScore);
+      sc.eval.swap(sc.trialEval);
       rankStar(sc);
     }
   }
@@ -252,6 +260,7 @@ bool smoothVertex(Context& ctx, VertexId v, std::vector<TetId>& star)
         cur = y;
         curMin = s;
         sc.score.swap(sc.trialScore);
+        sc.eval.swap(sc.trialEval);
         moved = true;
       }
       else if (moved)
@@ -269,8 +278,8 @@ bool smoothVertex(Context& ctx, VertexId v, std::vector<TetId>& star)
   if (ctx.accept(curMin, origMin) && curMin.score >= origMin.score + kMinSmoothingGain)
   {
     setPos(cur);
-    for (TetId t : star)
-      ctx.invalidate(t);
+    for (std::size_t i = 0; i < star.size(); ++i)
+      ctx.store(star[i], sc.eval[i]);
     return true;
   }
   setPos(orig);
