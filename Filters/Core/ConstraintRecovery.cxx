@@ -1028,23 +1028,29 @@ std::vector<std::size_t> Recovery::itemTriangles(std::size_t key) const
 std::string Recovery::nearlyTouchingTriangles(std::size_t key) const
 {
   const auto& triangles = surface_.triangles;
+  auto longestEdge = [](const double* const v[3])
+  {
+    double longest2 = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      double d2 = 0;
+      for (int c = 0; c < 3; ++c)
+        d2 += (v[k][c] - v[(k + 1) % 3][c]) * (v[k][c] - v[(k + 1) % 3][c]);
+      longest2 = std::max(longest2, d2);
+    }
+    return std::sqrt(longest2);
+  };
   for (std::size_t i : itemTriangles(key))
   {
     const auto& t = triangles[i];
     const double* p[3] = { point(t[0]), point(t[1]), point(t[2]) };
     const auto& box = triangleBoxes_[i];
+    const double sizeI = longestEdge(p);
     for (std::size_t j = 0; j < triangles.size(); ++j)
     {
       const auto& u = triangles[j];
       const double* q[3] = { point(u[0]), point(u[1]), point(u[2]) };
-      double size = 0;
-      for (int k = 0; k < 3; ++k)
-      {
-        size = std::max(size,
-          std::sqrt(geometry::segmentDistanceSquared(p[k], p[k], p[(k + 1) % 3], p[(k + 1) % 3])));
-        size = std::max(size,
-          std::sqrt(geometry::segmentDistanceSquared(q[k], q[k], q[(k + 1) % 3], q[(k + 1) % 3])));
-      }
+      const double size = std::max(sizeI, longestEdge(q));
       const double tolerance = options_.nearTouchRatio * size;
       const auto& other = triangleBoxes_[j];
       bool apart = j == i;
