@@ -39,9 +39,9 @@ bool findEdgeRemoval(const Context& ctx, TetId t, VertexId p, VertexId q, LocalM
   // a guarded measure below its floor) rules out every triangulation containing it: such
   // ring triangles are pruned before their second tet is even measured.
   const double qFloor = std::min(oldMin.q, ctx.floorQ);
-  const double dihFloor = std::min(oldMin.dih, ctx.floorDih);
+  const double dihFloor = std::min(oldMin.dihCosine, ctx.floorDihCosine);
   auto usable = [&](const TetEval& e)
-  { return e.score > oldMin.score && e.q >= qFloor && e.dih >= dihFloor; };
+  { return e.score > oldMin.score && e.q >= qFloor && e.dihCosine >= dihFloor; };
   // Triangle (i<j<k) of the ring gives tets (ri,rj,rk,q) and (rj,ri,rk,p); tri holds the
   // worst of the two, score -1 when pruned or not positive.
   const int n2 = n * n;
@@ -109,7 +109,7 @@ bool findEdgeRemoval(const Context& ctx, TetId t, VertexId p, VertexId q, LocalM
     const WorstOf& w = triAt(i, k, j);
     out.newMin.score = std::min(out.newMin.score, w.score);
     out.newMin.q = std::min(out.newMin.q, w.q);
-    out.newMin.dih = std::min(out.newMin.dih, w.dih);
+    out.newMin.dihCosine = std::min(out.newMin.dihCosine, w.dihCosine);
     stack.push_back({ i, k });
     stack.push_back({ k, j });
   }

@@ -49,10 +49,16 @@ public:
     ctx_.adoptCache(later.ctx_);
     summarize(
       r.minQualityAfter, r.meanAfter, r.minDihedralAfter, r.shareBelowTargetAfter, r.tetsAfter);
+    r.minDihedralAfter = dihedralDegrees(r.minDihedralAfter);
   }
 
 private:
-  void summarize(double& minQ, double& meanQ, double& minDih, double& share, int& count) const;
+  // minDihCosine: the least TetEval::dihCosine (dihedralDegrees gives the smallest angle).
+  void summarize(double& minQ,
+    double& meanQ,
+    double& minDihCosine,
+    double& share,
+    int& count) const;
   void apply(const LocalMove& mv, std::vector<TetId>& created);
   bool improveTet(TetId t, std::vector<TetId>& created);
   // Vertex insertion at tet t (VertexInsertion.h), memoised like the other searches.
@@ -131,12 +137,12 @@ bool Optimizer::smooth(VertexId v)
 
 void Optimizer::summarize(double& minQ,
   double& meanQ,
-  double& minDih,
+  double& minDihCosine,
   double& share,
   int& count) const
 {
   minQ = kInf;
-  minDih = kInf;
+  minDihCosine = kInf;
   double sum = 0;
   int below = 0;
   count = 0;
@@ -146,7 +152,7 @@ void Optimizer::summarize(double& minQ,
       continue;
     TetEval e = ctx_.quality(t);
     minQ = std::min(minQ, e.q);
-    minDih = std::min(minDih, e.dih);
+    minDihCosine = std::min(minDihCosine, e.dihCosine);
     sum += e.q;
     if (e.score < ctx_.options.qualityTarget)
       ++below;
@@ -154,7 +160,8 @@ void Optimizer::summarize(double& minQ,
   }
   if (count == 0)
   {
-    minQ = minDih = meanQ = share = 0;
+    minQ = meanQ = share = 0;
+    minDihCosine = -2; // 0 degrees
     return;
   }
   meanQ = sum / count;
@@ -281,6 +288,7 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
     res_.minDihedralBefore,
     res_.shareBelowTargetBefore,
     res_.tetsBefore);
+  res_.minDihedralBefore = dihedralDegrees(res_.minDihedralBefore);
   insertionBudget_ = ctx_.options.maxInsertedVertices >= 0 ? ctx_.options.maxInsertedVertices
                                                            : 10 + res_.tetsBefore / 1000;
 
@@ -332,7 +340,7 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
     {
       double mean, share;
       int count;
-      summarize(ctx_.floorQ, mean, ctx_.floorDih, share, count);
+      summarize(ctx_.floorQ, mean, ctx_.floorDihCosine, share, count);
     }
     // Bad tets, worst first (ties by id: deterministic).
     auto collectBad = [&]()
@@ -469,6 +477,7 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
     res_.minDihedralAfter,
     res_.shareBelowTargetAfter,
     res_.tetsAfter);
+  res_.minDihedralAfter = dihedralDegrees(res_.minDihedralAfter);
   res_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return res_;
 }

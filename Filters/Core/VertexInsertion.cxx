@@ -190,7 +190,7 @@ void polishPosition(Context& ctx,
   double step)
 {
   const double qFloor = std::min(old.q, ctx.floorQ);
-  const double dihFloor = std::min(old.dih, ctx.floorDih);
+  const double dihFloor = std::min(old.dihCosine, ctx.floorDihCosine);
   // The objective, exact when it exceeds `bound`; otherwise some value <= bound: the search
   // only compares against its best so far, so a position is dropped at its first tet at or
   // below that (tried first next time: most positions are rejected by the same tet), not
@@ -212,7 +212,7 @@ void polishPosition(Context& ctx,
         w.add(e);
         // Scores are in [0,1], so a guarded measure below its floor puts the objective
         // (score - 2) at -1 or below.
-        reject = e.score <= bound || ((e.q < qFloor || e.dih < dihFloor) && bound >= -1);
+        reject = e.score <= bound || ((e.q < qFloor || e.dihCosine < dihFloor) && bound >= -1);
       }
       if (reject)
       {
@@ -223,7 +223,7 @@ void polishPosition(Context& ctx,
       }
     }
     // Guarded measures below their floor: worse than any position that keeps them.
-    return w.q >= qFloor && w.dih >= dihFloor ? w.score : w.score - 2;
+    return w.q >= qFloor && w.dihCosine >= dihFloor ? w.score : w.score - 2;
   };
   double* p = &ctx.mesh.coords[3 * static_cast<std::size_t>(xv)];
   double best = objective(-kInf);

@@ -56,7 +56,7 @@ bool tryPosition(const Context& ctx,
   double scoreAbove)
 {
   const double qFloor = std::min(old.q, ctx.floorQ);
-  const double dihFloor = std::min(old.dih, ctx.floorDih);
+  const double dihFloor = std::min(old.dihCosine, ctx.floorDihCosine);
   now = WorstOf();
   for (std::size_t i : sc.order)
   {
@@ -67,7 +67,7 @@ bool tryPosition(const Context& ctx,
           ctx.mesh.vertex(t, 3)))
       return false;
     const TetEval e = ctx.evalTet(t);
-    if (!(e.score > scoreAbove) || e.q < qFloor || e.dih < dihFloor)
+    if (!(e.score > scoreAbove) || e.q < qFloor || e.dihCosine < dihFloor)
       return false;
     sc.trialScore[i] = e.score;
     sc.trialEval[i] = e;

@@ -678,7 +678,7 @@ TEST(QualityOptimization, InlinedMeasureMatchesTetQuality)
       const bool pos = ref.signedVolume > 0;
       positive += pos;
       ASSERT_EQ(e.q, pos ? ref.quality : 0.0) << i;
-      ASSERT_EQ(e.dih, pos ? ref.minDihedral : 0.0) << i;
+      ASSERT_EQ(optimization::dihedralDegrees(e.dihCosine), pos ? ref.minDihedral : 0.0) << i;
     }
   }
   EXPECT_GT(positive, 10000); // both orientations were exercised
@@ -710,7 +710,7 @@ TEST(QualityOptimization, AdoptedCacheMatchesFreshMeasures)
     const optimization::TetEval adopted = second.quality(t), fresh = second.evalTet(t);
     ASSERT_EQ(adopted.score, fresh.score) << t;
     ASSERT_EQ(adopted.q, fresh.q) << t;
-    ASSERT_EQ(adopted.dih, fresh.dih) << t;
+    ASSERT_EQ(adopted.dihCosine, fresh.dihCosine) << t;
     ASSERT_NE(adopted.score, adopted.q) << t; // the two measures do differ here
     ASSERT_EQ(first.quality(t).score, first.evalTet(t).score) << t;
   }
