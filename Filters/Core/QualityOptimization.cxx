@@ -87,10 +87,12 @@ private:
   // Searches for an insertion, successful or not. Most fail, and a search costs 20-30
   // topological searches (torus at h/2: 650 searches for 93 insertions, a third of the
   // optimisation time), so they are bounded too: kInsertionSearchesPerVertex per vertex of
-  // the budget. 3 rather than 10: the same minimum angles on the sized benchmark's cases
-  // (2026-11-28), for 0.3-0.4x the insertion time.
+  // the budget. 1 rather than 10: the same or higher minimum angles on the sized benchmark's
+  // good surfaces (2026-11-28, with the forward-difference smoothing), for a fraction of the
+  // insertion time (3 -> 1: optimisation on cube at h/2 0.096 -> 0.090 s, 19% of it was
+  // insertion).
   int insertionSearches_ = 0;
-  static constexpr int kInsertionSearchesPerVertex = 3;
+  static constexpr int kInsertionSearchesPerVertex = 1;
   // Memo of failures (a failed search is not repeated on an unchanged neighbourhood; the
   // floors only rise, so it would fail again): changed_[v] is the clock of the last change
   // of a tet incident to v, smoothFailed_[v] when smoothing v last failed, tetFailed_[t]

@@ -204,14 +204,14 @@ bool smoothVertex(Context& ctx, VertexId v, std::vector<TetId>& star)
         break;
       const TetId t = star[i];
       std::array<double, 3> g;
+      // Forward differences from the score at cur (sc.score, measured there): one measure
+      // per axis instead of two, and eps is far below any step the search takes.
       for (int k = 0; k < 3; ++k)
       {
         x[k] = cur[k] + eps;
-        double sp = ctx.evalTet(t).score;
-        x[k] = cur[k] - eps;
-        double sm = ctx.evalTet(t).score;
+        const double sp = ctx.evalTet(t).score;
         x[k] = cur[k];
-        g[k] = (sp - sm) / (2 * eps);
+        g[k] = (sp - sc.score[i]) / eps;
       }
       sc.grads.push_back(g);
     }
