@@ -6,9 +6,12 @@
 //     by 2-3 flips and edge removals (n -> 2n-4, including 3-2 and 4-4) chosen greedily; a
 //     move is kept only if it strictly lowers an exact integer measure of how much of the mesh
 //     the missing item cuts through (tets, faces and edges it meets), so flipping ends. When
-//     no move lowers it, the shell of an edge cutting the item is shrunk by 2-3 flips, or one
-//     cost-neutral move is kept if it enables an improving one (one-move lookahead). A stuck
-//     edge is retried with its input triangles added to the measure;
+//     no move lowers it, an edge cutting the item is removed by a bounded sequence of flips
+//     that never raise the measure, first flipping away the link edges that block them
+//     (TetGen's flipnm, two levels deep), kept if the sequence lowers the measure or recovers
+//     the item; else the shell of such an edge is shrunk by 2-3 flips, or one cost-neutral
+//     move is kept if it enables an improving one (one-move lookahead). A stuck edge is
+//     retried with its input triangles added to the measure;
 //  2. recovered faces are flagged constrained on both sides, so no later flip or insertion
 //     removes them;
 //  3. items still missing get one Steiner point each, by constrained Delaunay insertion
