@@ -250,6 +250,13 @@ FlipCost memoized(const ItemCost& base, const TetMesh& mesh)
   return c;
 }
 
+// Of two moves, the one that lowers the measure more, then the better shaped.
+bool betterMove(const FlipCandidate& a, const FlipCandidate& b)
+{
+  const int gainA = a.oldCost - a.newCost, gainB = b.oldCost - b.newCost;
+  return gainA > gainB || (gainA == gainB && a.minQuality > b.minQuality);
+}
+
 // Cost-neutral moves tried by the one-move lookahead of a stuck flip search.
 constexpr std::size_t kMaxNeutral = 48;
 
@@ -956,9 +963,7 @@ bool Recovery::shrinkCrossingShell(const std::vector<TetId>& pipe, const FlipCos
           int f = localIndex(mesh_, s, ring[(k + 1) % n]);
           if (!cachedFlip23(s, f, cost, candidate) || candidate.newCost > candidate.oldCost)
             continue;
-          if (!found || candidate.newCost - candidate.oldCost < best.newCost - best.oldCost ||
-            (candidate.newCost - candidate.oldCost == best.newCost - best.oldCost &&
-              candidate.minQuality > best.minQuality))
+          if (!found || betterMove(candidate, best))
           {
             best = candidate;
             found = true;
@@ -1069,9 +1074,7 @@ bool Recovery::removeEdgeDeep(VertexId p,
       if (!flip23Candidate(mesh_, s, localIndex(mesh_, s, ring[(k + 1) % n]), cost, move) ||
         move.newCost > move.oldCost)
         continue;
-      if (!found || move.newCost - move.oldCost < best.newCost - best.oldCost ||
-        (move.newCost - move.oldCost == best.newCost - best.oldCost &&
-          move.minQuality > best.minQuality))
+      if (!found || betterMove(move, best))
       {
         best = move;
         found = true;
