@@ -582,6 +582,45 @@ TEST(QualityOptimization, DefaultsAndReportedMinima)
   }
 }
 
+// The optimiser keeps the smallest dihedral angle as a cosine and scores the dihedral stage by
+// sin(angle / 2); qualityTarget keeps its public unit (angle / 70.53 degrees) for the
+// MinDihedral measure. The share it reports below the target must be the share of tets whose
+// smallest dihedral angle (TetQuality's) is below target * 70.53 degrees, before and after.
+TEST(QualityOptimization, MinDihedralTargetInDegrees)
+{
+  for (double angle = 1; angle < 180; angle += 1)
+    EXPECT_LT(optimization::dihedralScoreOfDegrees(angle - 0.5),
+      optimization::dihedralScoreOfDegrees(angle))
+      << angle;
+  RegionMesh rm = jitteredGridCube(5);
+  OptimizationOptions options;
+  options.measure = QualityMeasure::MinDihedral;
+  options.qualityTarget = 0.4; // 28.2 degrees
+  auto shareBelow = [&]()
+  {
+    int below = 0, count = 0;
+    for (TetId t = 0; t < rm.mesh.tetCapacity(); ++t)
+    {
+      if (rm.mesh.isDeleted(t))
+        continue;
+      const VertexId a = rm.mesh.vertex(t, 0), b = rm.mesh.vertex(t, 1), c = rm.mesh.vertex(t, 2),
+                     d = rm.mesh.vertex(t, 3);
+      const TetShape shape =
+        measureTet(rm.mesh.point(b), rm.mesh.point(a), rm.mesh.point(c), rm.mesh.point(d));
+      below += shape.minDihedral < options.qualityTarget * optimization::kRegularDihedral;
+      ++count;
+    }
+    return static_cast<double>(below) / count;
+  };
+  const double before = shareBelow();
+  ASSERT_GT(before, 0.0); // the target is above some tets' angles
+  OptimizationResult r = optimizeMesh(rm, options);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.shareBelowTargetBefore, before);
+  EXPECT_EQ(r.shareBelowTargetAfter, shareBelow());
+  EXPECT_LT(r.shareBelowTargetAfter, before);
+}
+
 TEST(QualityOptimization, VertexSizeTooShort)
 {
   RegionMesh rm = jitteredGridCube(3);
