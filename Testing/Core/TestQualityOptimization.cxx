@@ -503,6 +503,22 @@ TEST(QualityOptimization, SizeScaled)
   EXPECT_GE(r.minDihedralAfter, r.minDihedralBefore);
 }
 
+// TetQuality's measure of live tet t (Q size-scaled when h is given). TetMesh tets are
+// positive in Shewchuk's sign, measureTet expects VTK's: swap a and b.
+TetShape freshShape(const RegionMesh& rm, TetId t, const std::vector<double>* h)
+{
+  const VertexId a = rm.mesh.vertex(t, 0), b = rm.mesh.vertex(t, 1), c = rm.mesh.vertex(t, 2),
+                 d = rm.mesh.vertex(t, 3);
+  if (!h)
+    return measureTet(rm.mesh.point(b), rm.mesh.point(a), rm.mesh.point(c), rm.mesh.point(d));
+  const double hh[4] = { (*h)[static_cast<std::size_t>(b)],
+    (*h)[static_cast<std::size_t>(a)],
+    (*h)[static_cast<std::size_t>(c)],
+    (*h)[static_cast<std::size_t>(d)] };
+  return measureTetScaled(
+    rm.mesh.point(b), rm.mesh.point(a), rm.mesh.point(c), rm.mesh.point(d), hh);
+}
+
 // The minimum Q and dihedral angle over the live tets, measured afresh (the optimiser's are
 // measured the same way, through a cache): Q size-scaled when h is given.
 std::pair<double, double> freshMinima(const RegionMesh& rm, const std::vector<double>* h)
@@ -512,21 +528,7 @@ std::pair<double, double> freshMinima(const RegionMesh& rm, const std::vector<do
   {
     if (rm.mesh.isDeleted(t))
       continue;
-    const VertexId a = rm.mesh.vertex(t, 0), b = rm.mesh.vertex(t, 1), c = rm.mesh.vertex(t, 2),
-                   d = rm.mesh.vertex(t, 3);
-    // TetMesh tets are positive in Shewchuk's sign, measureTet expects VTK's: swap a and b.
-    TetShape s;
-    if (h)
-    {
-      const double hh[4] = { (*h)[static_cast<std::size_t>(b)],
-        (*h)[static_cast<std::size_t>(a)],
-        (*h)[static_cast<std::size_t>(c)],
-        (*h)[static_cast<std::size_t>(d)] };
-      s = measureTetScaled(
-        rm.mesh.point(b), rm.mesh.point(a), rm.mesh.point(c), rm.mesh.point(d), hh);
-    }
-    else
-      s = measureTet(rm.mesh.point(b), rm.mesh.point(a), rm.mesh.point(c), rm.mesh.point(d));
+    const TetShape s = freshShape(rm, t, h);
     q = std::min(q, s.quality);
     dih = std::min(dih, s.minDihedral);
   }
@@ -603,11 +605,8 @@ TEST(QualityOptimization, MinDihedralTargetInDegrees)
     {
       if (rm.mesh.isDeleted(t))
         continue;
-      const VertexId a = rm.mesh.vertex(t, 0), b = rm.mesh.vertex(t, 1), c = rm.mesh.vertex(t, 2),
-                     d = rm.mesh.vertex(t, 3);
-      const TetShape shape =
-        measureTet(rm.mesh.point(b), rm.mesh.point(a), rm.mesh.point(c), rm.mesh.point(d));
-      below += shape.minDihedral < options.qualityTarget * optimization::kRegularDihedral;
+      below += freshShape(rm, t, nullptr).minDihedral <
+        options.qualityTarget * optimization::kRegularDihedral;
       ++count;
     }
     return static_cast<double>(below) / count;
