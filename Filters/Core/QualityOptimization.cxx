@@ -47,9 +47,7 @@ public:
     if (later.ctx_.size && ctx_.size)
       ctx_.sizeCopy = later.ctx_.sizeCopy;
     ctx_.adoptCache(later.ctx_);
-    summarize(
-      r.minQualityAfter, r.meanAfter, r.minDihedralAfter, r.shareBelowTargetAfter, r.tetsAfter);
-    r.minDihedralAfter = dihedralDegrees(r.minDihedralAfter);
+    summarizeAfter(r);
   }
 
 private:
@@ -59,6 +57,22 @@ private:
     double& minDihCosine,
     double& share,
     int& count) const;
+  // summarize into r's "before" or "after" statistics, the smallest angle in degrees.
+  void summarizeBefore(OptimizationResult& r) const
+  {
+    summarize(r.minQualityBefore,
+      r.meanBefore,
+      r.minDihedralBefore,
+      r.shareBelowTargetBefore,
+      r.tetsBefore);
+    r.minDihedralBefore = dihedralDegrees(r.minDihedralBefore);
+  }
+  void summarizeAfter(OptimizationResult& r) const
+  {
+    summarize(
+      r.minQualityAfter, r.meanAfter, r.minDihedralAfter, r.shareBelowTargetAfter, r.tetsAfter);
+    r.minDihedralAfter = dihedralDegrees(r.minDihedralAfter);
+  }
   void apply(const LocalMove& mv, std::vector<TetId>& created);
   bool improveTet(TetId t, std::vector<TetId>& created);
   // Vertex insertion at tet t (VertexInsertion.h), memoised like the other searches.
@@ -285,12 +299,7 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
   }
   if (ctx_.rm.region.size() < static_cast<std::size_t>(ctx_.mesh.tetCapacity()))
     ctx_.rm.region.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()), 0);
-  summarize(res_.minQualityBefore,
-    res_.meanBefore,
-    res_.minDihedralBefore,
-    res_.shareBelowTargetBefore,
-    res_.tetsBefore);
-  res_.minDihedralBefore = dihedralDegrees(res_.minDihedralBefore);
+  summarizeBefore(res_);
   insertionBudget_ = ctx_.options.maxInsertedVertices >= 0 ? ctx_.options.maxInsertedVertices
                                                            : 10 + res_.tetsBefore / 1000;
 
@@ -474,12 +483,7 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
       insertionPass_ = false;
   }
 
-  summarize(res_.minQualityAfter,
-    res_.meanAfter,
-    res_.minDihedralAfter,
-    res_.shareBelowTargetAfter,
-    res_.tetsAfter);
-  res_.minDihedralAfter = dihedralDegrees(res_.minDihedralAfter);
+  summarizeAfter(res_);
   res_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return res_;
 }
