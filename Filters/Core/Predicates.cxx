@@ -222,7 +222,8 @@ int insphereExtended(const double* a,
 // every coordinate difference is exact and, after an exact power-of-two scaling, an integer
 // below 2^bits, then every intermediate value of the determinant is an integer below 2^63
 // and a 64-bit integer evaluation is exact, zero included. Bits: insphere needs
-// 72 * 2^(5 bits) < 2^63 (bits = 11); orient3d needs 6 * 2^(3 bits) < 2^63 (bits = 20).
+// 72 * 2^(5 bits) < 2^63 (bits = 11; 24 with 128-bit integers); orient3d needs
+// 6 * 2^(3 bits) < 2^63 (bits = 20).
 bool scaledIntegerDifferences(const double* const* points,
   int count,
   const double* origin,
@@ -242,7 +243,7 @@ bool scaledIntegerDifferences(const double* const* points,
       if (!(std::fabs(x) <= maxAbs)) // written so that a NaN propagates and fails below
         maxAbs = std::fabs(x);
     }
-  // |x| < 2^bits <= 2^20 here, so the int64 round trip is an exact integrality test
+  // |x| < 2^bits <= 2^24 here, so the int64 round trip is an exact integrality test
   // (cheaper than std::trunc, which is a library call without SSE4.1).
   auto isInteger = [](double x) { return x == static_cast<double>(static_cast<long long>(x)); };
   const double limit = std::ldexp(1.0, bits);
@@ -291,6 +292,29 @@ int orient3dLattice(const double* a, const double* b, const double* c, const dou
   return 2 + (det > 0) - (det < 0);
 }
 
+// The in-sphere determinant of integer differences m (rows a-e .. d-e), in an integer type
+// wide enough for 72 * max|m|^5.
+template<typename Int>
+int insphereOfIntegers(const long long (*m)[3])
+{
+  auto x = [m](int i, int k) { return static_cast<Int>(m[i][k]); };
+  const Int ab = x(0, 0) * x(1, 1) - x(1, 0) * x(0, 1);
+  const Int bc = x(1, 0) * x(2, 1) - x(2, 0) * x(1, 1);
+  const Int cd = x(2, 0) * x(3, 1) - x(3, 0) * x(2, 1);
+  const Int da = x(3, 0) * x(0, 1) - x(0, 0) * x(3, 1);
+  const Int ac = x(0, 0) * x(2, 1) - x(2, 0) * x(0, 1);
+  const Int bd = x(1, 0) * x(3, 1) - x(3, 0) * x(1, 1);
+  const Int abc = x(0, 2) * bc - x(1, 2) * ac + x(2, 2) * ab;
+  const Int bcd = x(1, 2) * cd - x(2, 2) * bd + x(3, 2) * bc;
+  const Int cda = x(2, 2) * da + x(3, 2) * ac + x(0, 2) * cd;
+  const Int dab = x(3, 2) * ab + x(0, 2) * bd + x(1, 2) * da;
+  Int lift[4];
+  for (int i = 0; i < 4; ++i)
+    lift[i] = x(i, 0) * x(i, 0) + x(i, 1) * x(i, 1) + x(i, 2) * x(i, 2);
+  const Int det = (lift[3] * abc - lift[2] * dab) + (lift[1] * cda - lift[0] * bcd);
+  return 2 + (det > 0) - (det < 0);
+}
+
 int insphereLattice(const double* a,
   const double* b,
   const double* c,
@@ -299,24 +323,15 @@ int insphereLattice(const double* a,
 {
   const double* const pts[4] = { a, b, c, d };
   long long m[4][3];
-  if (!scaledIntegerDifferences(pts, 4, e, 11, m))
-    return 0;
-  using L = long long;
-  const L ab = m[0][0] * m[1][1] - m[1][0] * m[0][1];
-  const L bc = m[1][0] * m[2][1] - m[2][0] * m[1][1];
-  const L cd = m[2][0] * m[3][1] - m[3][0] * m[2][1];
-  const L da = m[3][0] * m[0][1] - m[0][0] * m[3][1];
-  const L ac = m[0][0] * m[2][1] - m[2][0] * m[0][1];
-  const L bd = m[1][0] * m[3][1] - m[3][0] * m[1][1];
-  const L abc = m[0][2] * bc - m[1][2] * ac + m[2][2] * ab;
-  const L bcd = m[1][2] * cd - m[2][2] * bd + m[3][2] * bc;
-  const L cda = m[2][2] * da + m[3][2] * ac + m[0][2] * cd;
-  const L dab = m[3][2] * ab + m[0][2] * bd + m[1][2] * da;
-  L lift[4];
-  for (int i = 0; i < 4; ++i)
-    lift[i] = m[i][0] * m[i][0] + m[i][1] * m[i][1] + m[i][2] * m[i][2];
-  const L det = (lift[3] * abc - lift[2] * dab) + (lift[1] * cda - lift[0] * bcd);
-  return 2 + (det > 0) - (det < 0);
+  if (scaledIntegerDifferences(pts, 4, e, 11, m))
+    return insphereOfIntegers<long long>(m);
+#ifdef __SIZEOF_INT128__
+  // 128 bits hold 72 * 2^(5 * 24): lattices with finer steps relative to their extent (the
+  // refinement's snapped lattice: steps of a/4096 and more) stay out of the expansions.
+  if (scaledIntegerDifferences(pts, 4, e, 24, m))
+    return insphereOfIntegers<__int128>(m);
+#endif
+  return 0;
 }
 
 inline int decodeLattice(int code)

@@ -307,6 +307,41 @@ TEST(Predicates, ExactlyDegenerateIntegerInput)
   }
 }
 
+// Integer differences too wide for the 64-bit stage (11 bits) but within the 128-bit one's
+// 24 bits, as on the refinement's snapped lattice (odd steps of 2^11 units and more):
+// exactly co-spherical tuples must give 0, up to the top of the range (differences of
+// 14 * 2^20 units; an overflow would give a sign), and one unit off the sphere a sign.
+// (Non-zero values this wide are decided by the filter before the integer stages.)
+TEST(Predicates, WideIntegerInput)
+{
+  Random rnd;
+  for (int r2 : { 25, 50 })
+  {
+    std::vector<Point> sphere = integerSpherePoints(r2);
+    for (int i = 0; i < 5000; ++i)
+    {
+      const double step = 2 * rnd.integer(1 << 10, (1 << 19) - 1) + 1; // odd, 2^11..2^20
+      const double unit = std::ldexp(1.0, rnd.integer(-40, 0));
+      const double origin = std::ldexp(double(rnd.integer(-(1 << 20), 1 << 20)), 12);
+      std::array<Point, 5> p;
+      for (Point& q : p)
+      {
+        q = sphere[rnd.integer(0, int(sphere.size()) - 1)];
+        for (double& x : q)
+          x = (origin + x * step) * unit;
+      }
+      expectInsphere(p[0], p[1], p[2], p[3], p[4]);
+      if (oracleOrient3d(p[0], p[1], p[2], p[3]) != 0)
+      {
+        EXPECT_EQ(
+          predicates::insphere(p[0].data(), p[1].data(), p[2].data(), p[3].data(), p[4].data()), 0);
+      }
+      p[4][rnd.integer(0, 2)] += unit * (rnd.integer(0, 1) ? 1 : -1);
+      expectInsphere(p[0], p[1], p[2], p[3], p[4]);
+    }
+  }
+}
+
 TEST(Predicates, ConventionsOnKnownConfigurations)
 {
   const Point a{ 1, 0, 0 }, b{ 0, 1, 0 }, c{ 0, 0, 0 }, below{ 0, 0, -1 }, above{ 0, 0, 1 };
