@@ -258,14 +258,27 @@ private:
 // The constrained faces (boundary, interfaces) in a hash grid, for the distance from a
 // candidate point to the nearest one. They never change during refinement (no point goes on
 // them, no cavity crosses them), so the grid is built once.
+//
+// A face may also have a clearance of its own, `clearanceFactor` times its longest edge,
+// where that exceeds `minDistance` times its vertices' smallest size: no point is placed
+// nearer. A face larger than h otherwise gets its tet's apex from the first layer of points
+// at ~h, a flat tet no optimisation can lift (torus at h/2, faces of 3h: the worst tets were
+// all on such faces, apex at 0.25 of the face's edge). Such a face is listed in every cell
+// its clearance reaches, so a query still only looks at the cells of its own radius.
 class FaceGrid
 {
 public:
-  FaceGrid(const TetMesh& mesh, double cell, const double* origin)
-    : cell_(cell)
+  FaceGrid(const TetMesh& mesh,
+    double cell,
+    const double* origin,
+    double clearanceFactor,
+    double maxClearance,
+    double minDistance,
+    const std::vector<double>& h)
   {
     for (int k = 0; k < 3; ++k)
       origin_[k] = origin[k];
+    std::vector<std::pair<TetId, int>> faces;
     for (TetId t = 0; t < mesh.tetCapacity(); ++t)
     {
       if (mesh.isDeleted(t))
@@ -277,47 +290,73 @@ public:
         const FaceRef n = mesh.neighbor(t, f);
         if (n != kNoNeighbor && faceTet(n) < t)
           continue; // an interface face, listed from its other side
-        const std::int32_t id = static_cast<std::int32_t>(corners_.size() / 3);
-        double lo[3], hi[3];
+        faces.emplace_back(t, f);
+        double longest = 0, smallestSize = std::numeric_limits<double>::max();
         for (int k = 0; k < 3; ++k)
         {
           const VertexId v = mesh.vertex(t, kFaceVertices[f][k]);
+          const VertexId w = mesh.vertex(t, kFaceVertices[f][(k + 1) % 3]);
           corners_.push_back(v);
-          for (int a = 0; a < 3; ++a)
-          {
-            lo[a] = k == 0 ? mesh.point(v)[a] : std::min(lo[a], mesh.point(v)[a]);
-            hi[a] = k == 0 ? mesh.point(v)[a] : std::max(hi[a], mesh.point(v)[a]);
-          }
+          longest = std::max(longest, distance(mesh.point(v), mesh.point(w)));
+          smallestSize = std::min(smallestSize, h[v]);
         }
-        boxes_.insert(boxes_.end(), { lo[0], lo[1], lo[2], hi[0], hi[1], hi[2] });
-        std::int64_t c0[3], c1[3];
-        if (cellRange(lo, hi, 0, c0, c1) > kMaxCellsPerFace)
-        {
-          large_.push_back(id);
-          continue;
-        }
-        for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
-          for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
-            for (std::int64_t k = c0[2]; k <= c1[2]; ++k)
-              cells_[key(i, j, k)].push_back(id);
+        const double clearance = std::min(clearanceFactor * longest, maxClearance * smallestSize);
+        clearance_.push_back(
+          clearance > minDistance * smallestSize && std::isfinite(clearance) ? clearance : 0.0);
       }
+    }
+    // Cells no smaller than the median clearance, so that a face's clearance spans a few.
+    std::vector<double> positive;
+    for (double c : clearance_)
+      if (c > 0)
+        positive.push_back(c);
+    if (!positive.empty())
+    {
+      std::nth_element(positive.begin(), positive.begin() + positive.size() / 2, positive.end());
+      cell = std::max(cell, positive[positive.size() / 2]);
+    }
+    cell_ = cell;
+    for (std::size_t id = 0; id < faces.size(); ++id)
+    {
+      double lo[3], hi[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        const double* x = mesh.point(corners_[3 * id + k]);
+        for (int a = 0; a < 3; ++a)
+        {
+          lo[a] = k == 0 ? x[a] : std::min(lo[a], x[a]);
+          hi[a] = k == 0 ? x[a] : std::max(hi[a], x[a]);
+        }
+      }
+      boxes_.insert(boxes_.end(), { lo[0], lo[1], lo[2], hi[0], hi[1], hi[2] });
+      std::int64_t c0[3], c1[3];
+      if (cellRange(lo, hi, clearance_[id], c0, c1) > kMaxCellsPerFace)
+      {
+        large_.push_back(static_cast<std::int32_t>(id));
+        continue;
+      }
+      for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
+        for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
+          for (std::int64_t k = c0[2]; k <= c1[2]; ++k)
+            cells_[key(i, j, k)].push_back(static_cast<std::int32_t>(id));
     }
   }
 
-  // Is a constrained face closer to p than limit?
-  bool near(const TetMesh& mesh, const double* p, double limit) const
+  // Is a constrained face closer to p than limit, or than its own clearance times
+  // clearanceScale (<= 1)?
+  bool near(const TetMesh& mesh, const double* p, double limit, double clearanceScale) const
   {
-    const double limit2 = limit * limit;
     auto faceIsNear = [&](std::int32_t id)
     {
-      // Bounding box first: most faces of a cell are farther than limit.
+      const double r = std::max(limit, clearanceScale * clearance_[static_cast<std::size_t>(id)]);
+      // Bounding box first: most faces of a cell are farther than r.
       const double* box = &boxes_[6 * static_cast<std::size_t>(id)];
-      if (p[0] < box[0] - limit || p[0] > box[3] + limit || p[1] < box[1] - limit ||
-        p[1] > box[4] + limit || p[2] < box[2] - limit || p[2] > box[5] + limit)
+      if (p[0] < box[0] - r || p[0] > box[3] + r || p[1] < box[1] - r || p[1] > box[4] + r ||
+        p[2] < box[2] - r || p[2] > box[5] + r)
         return false;
       const VertexId* v = &corners_[3 * static_cast<std::size_t>(id)];
       return pointTriangleDistance2(p, mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2])) <
-        limit2;
+        r * r;
     };
     for (std::int32_t id : large_)
       if (faceIsNear(id))
@@ -383,7 +422,8 @@ private:
   double cell_;
   double origin_[3];
   std::vector<VertexId> corners_;
-  std::vector<double> boxes_; // per face: min x y z, max x y z
+  std::vector<double> boxes_;     // per face: min x y z, max x y z
+  std::vector<double> clearance_; // per face, 0: none
   std::unordered_map<std::uint64_t, std::vector<std::int32_t>> cells_;
   std::vector<std::int32_t> large_; // faces over kMaxCellsPerFace cells
 };
@@ -701,7 +741,13 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     const double radius = std::max({ options.minBoundaryDistance,
       options.latticeSpacing > 0 ? options.latticeBoundaryDistance : 0.0,
       0.1 });
-    faces = std::make_unique<FaceGrid>(mesh, radius * sorted[sorted.size() / 2], lo);
+    faces = std::make_unique<FaceGrid>(mesh,
+      radius * sorted[sorted.size() / 2],
+      lo,
+      options.faceClearance,
+      options.maxFaceClearance,
+      std::max(options.minBoundaryDistance, options.latticeBoundaryDistance),
+      h);
   }
 
   auto lap = [last = std::chrono::steady_clock::now()]() mutable
@@ -801,7 +847,11 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       ++result.rejectedNearVertex;
       return -1;
     }
-    if (boundaryDistance > 0 && faces->near(mesh, p, boundaryDistance * hp))
+    // Faces' own clearances scale like the distances in h: the edge splitting fills the
+    // layer the lattice leaves next to them.
+    if (boundaryDistance > 0 &&
+      faces->near(
+        mesh, p, boundaryDistance * hp, boundaryDistance / options.latticeBoundaryDistance))
     {
       ++result.rejectedNearBoundary;
       return -1;

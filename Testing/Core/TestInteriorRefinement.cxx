@@ -482,13 +482,16 @@ TEST(InteriorRefinement, CoarseBoundaryFineSize)
 {
   // 12 triangles, h = 0.1: the interior fills up, the boundary stays the 12 triangles. Edges to
   // the 8 corners cannot get short (no point goes on the boundary), so the band is measured on
-  // the edges away from the boundary too.
+  // the edges away from the boundary too: beyond the faces' clearance (maxFaceClearance h,
+  // which keeps points of size h off faces of 14 h) and one h more.
   Case s;
   s.surface = tt::cube(1);
   ASSERT_TRUE(prepare(s));
   const auto before = regionVolumes(s.mesh);
   std::vector<double> h(8, 0.1);
-  RefinementResult r = refineInterior(s.mesh, h, RefinementOptions{});
+  const RefinementOptions options;
+  const double deepFrom = (options.maxFaceClearance + 1) * 0.1;
+  RefinementResult r = refineInterior(s.mesh, h, options);
   ASSERT_TRUE(r.ok) << r.error;
   const EdgeStats e = edgeStats(s.mesh, h);
   report("12-triangle cube h=0.1", s, r, e, 0);
@@ -524,7 +527,7 @@ TEST(InteriorRefinement, CoarseBoundaryFineSize)
         const bool in = l >= 0.7 && l <= 1.42;
         ++inner;
         band += in;
-        if (depth(p) >= 0.1 && depth(q) >= 0.1)
+        if (depth(p) >= deepFrom && depth(q) >= deepFrom)
         {
           ++deep;
           deepBand += in;
@@ -532,11 +535,12 @@ TEST(InteriorRefinement, CoarseBoundaryFineSize)
       }
   }
   std::printf("[12-triangle cube] in band: %.2f%% of %zu edges between interior points, %.2f%% "
-              "of %zu edges at least h deep\n",
+              "of %zu edges at least %g deep\n",
     100.0 * band / inner,
     inner,
     100.0 * deepBand / deep,
-    deep);
+    deep,
+    deepFrom);
   // Documented thresholds: next to the 1 x 1 faces the tets must reach the far corners (the
   // faces cannot be split), which stretches the first layer of interior edges.
   EXPECT_GE(double(band) / inner, 0.85);
