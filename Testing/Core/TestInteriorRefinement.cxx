@@ -547,6 +547,71 @@ TEST(InteriorRefinement, CoarseBoundaryFineSize)
   EXPECT_GE(double(deepBand) / deep, 0.95);
 }
 
+TEST(InteriorRefinement, PointsKeepOffFacesLargerThanH)
+{
+  // cube(4) at h = 1/12: faces with legs of 3 h and a diagonal of 4.24 h. Every interior
+  // point keeps the faces' clearance (0.4 x 4.24 h = 1.7 h for the lattice, 0.625 of it for
+  // the edge splitting: 0.25 of the diagonal), so the tet on each face is tall: without the
+  // clearance (faceClearance = 0) a split point at 0.5 h, 0.12 of the diagonal, is an apex.
+  Case s;
+  s.surface = tt::cube(4);
+  ASSERT_TRUE(prepare(s));
+  const auto before = regionVolumes(s.mesh);
+  const double h0 = 1.0 / 12;
+  std::vector<double> h(static_cast<std::size_t>(s.surface.pointCount()), h0);
+  const RefinementOptions options;
+  RefinementResult r = refineInterior(s.mesh, h, options);
+  ASSERT_TRUE(r.ok) << r.error;
+  std::vector<int> sign(static_cast<std::size_t>(s.surface.triangleCount()), 1);
+  EXPECT_EQ(checkRefined(s, h, before, sign), "");
+  const TetMesh& m = s.mesh.mesh;
+  const VertexId surfacePoints = s.surface.pointCount();
+  ASSERT_GT(m.vertexCount(), surfacePoints + 50);
+  const double diagonal = std::sqrt(2.0) / 4;
+  const double clearance =
+    std::min(options.faceClearance * diagonal, options.maxFaceClearance * h0);
+  const double splitClearance =
+    clearance * options.minBoundaryDistance / options.latticeBoundaryDistance;
+  double nearest = 1e300;
+  for (VertexId v = surfacePoints; v < m.vertexCount(); ++v)
+    for (int k = 0; k < 3; ++k)
+      nearest = std::min({ nearest, m.point(v)[k], 1 - m.point(v)[k] });
+  // Every face of the cube(4) surface has the same diagonal, so the distance to the cube's
+  // boundary is the distance to the nearest face.
+  EXPECT_GE(nearest, splitClearance * (1 - 1e-12));
+  double lowestApex = 1e300;
+  for (TetId t = 0; t < m.tetCapacity(); ++t)
+  {
+    if (m.isDeleted(t))
+      continue;
+    for (int f = 0; f < 4; ++f)
+    {
+      VertexId boundaryCorners = 0;
+      for (int k = 0; k < 3; ++k)
+        boundaryCorners += m.vertex(t, kFaceVertices[f][k]) < surfacePoints;
+      const VertexId apex = m.vertex(t, f);
+      if (boundaryCorners < 3 || apex < surfacePoints)
+        continue;
+      const double* p = m.point(apex);
+      // The face lies in a cube face, so its plane is the nearest axis plane of its centroid.
+      double c[3] = { 0, 0, 0 };
+      for (int k = 0; k < 3; ++k)
+        for (int a = 0; a < 3; ++a)
+          c[a] += m.point(m.vertex(t, kFaceVertices[f][k]))[a] / 3;
+      for (int a = 0; a < 3; ++a)
+        if (c[a] < 1e-12 || c[a] > 1 - 1e-12)
+          lowestApex = std::min(lowestApex, std::fabs(p[a] - c[a]));
+    }
+  }
+  std::printf("[cube(4), h = 1/12] nearest interior point to the boundary %.4f (%.2f of a face's "
+              "diagonal); lowest apex over a boundary face %.4f (%.2f)\n",
+    nearest,
+    nearest / diagonal,
+    lowestApex,
+    lowestApex / diagonal);
+  EXPECT_GE(lowestApex, splitClearance * (1 - 1e-12));
+}
+
 TEST(InteriorRefinement, SizeVaryingTenfoldAcrossTheSurface)
 {
   Case s;
