@@ -21,7 +21,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CASES = [("sphere.off", 0.1497), ("cube.vtp", 0.142259), ("cube.vtp", 0.0711294),
          ("icosphere.vtp", 0.15073), ("icosphere.vtp", 0.0753649), ("torus.vtp", 0.127591),
          ("torus.vtp", 0.0637954), ("nested_spheres.vtp", None), ("knot1.off", None),
-         ("fandisk.off", None)]
+         ("fandisk.off", None), ("cube.vtp", 0.0303)]
 MESHING = ["input diagnosis", "size sources", "surface input and checks",
            "Delaunay of the surface points", "boundary recovery", "regions and compaction",
            "mesh assembly", "size field and refinement setup", "lattice candidates",
