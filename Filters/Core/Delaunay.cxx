@@ -21,6 +21,7 @@
 
 #include "FilteredPredicates.h"
 #include "HilbertSort.h"
+#include "HugePages.h"
 #include "MeshValidation.h"
 #include "Predicates.h"
 
@@ -28,10 +29,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-
-#ifdef __linux__
-#include <sys/mman.h>
-#endif
 
 namespace tetmesher
 {
@@ -175,24 +172,6 @@ TetId walk(const TetMesh& mesh, const double* p, TetId start, std::uint64_t& rng
       return t;
   }
   return exhaustiveLocate(mesh, p);
-}
-
-// Asks for transparent huge pages over a vector's reserved storage: the tet arrays are
-// written once, front to back, and first-touch page faults on 4 KiB pages were about a tenth
-// of the build time. Only an advice: without THP nothing changes.
-template<typename T>
-void adviseHugePages(const std::vector<T>& v)
-{
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  constexpr std::uintptr_t kHugePage = std::uintptr_t(1) << 21;
-  const std::uintptr_t first = reinterpret_cast<std::uintptr_t>(v.data());
-  const std::uintptr_t begin = (first + kHugePage - 1) & ~(kHugePage - 1);
-  const std::uintptr_t end = (first + v.capacity() * sizeof(T)) & ~(kHugePage - 1);
-  if (end > begin)
-    madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-#else
-  (void)v;
-#endif
 }
 
 void removeFromCavity(TetMesh& mesh, InsertionWorkspace& ws, TetId t)
@@ -732,6 +711,7 @@ DelaunayResult buildDelaunay(TetMesh& mesh, const DelaunayOptions& options)
   // reallocate (and never transiently double the memory) during insertion.
   const std::size_t expectedTets = static_cast<std::size_t>(n) * 7 + 64;
   mesh.coords.reserve(3 * (static_cast<std::size_t>(n) + 8));
+  adviseHugePages(mesh.coords);
   mesh.tets.reserve(4 * expectedTets);
   mesh.neighbors.reserve(4 * expectedTets);
   mesh.flags.reserve(expectedTets);

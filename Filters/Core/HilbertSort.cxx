@@ -2,6 +2,7 @@
 // curve", AIP Conf. Proc. 707, 2004): undo the per-level rotations/reflections, Gray-code
 // the result, then interleave the bits of the three coordinates from the most significant.
 #include "HilbertSort.h"
+#include "HugePages.h"
 
 #include <algorithm>
 #include <cmath>
@@ -119,7 +120,10 @@ void hilbertSort(const double* coords, VertexId* first, VertexId* last)
     std::uint64_t key;
     VertexId id;
   };
-  std::vector<Keyed> keyed(static_cast<std::size_t>(last - first));
+  std::vector<Keyed> keyed;
+  keyed.reserve(static_cast<std::size_t>(last - first));
+  adviseHugePages(keyed);
+  keyed.resize(static_cast<std::size_t>(last - first));
   const double maxCell = std::ldexp(1.0, kBits) - 1.0;
   for (std::size_t i = 0; i < keyed.size(); ++i)
   {
@@ -142,7 +146,10 @@ void hilbertSort(const double* coords, VertexId* first, VertexId* last)
 
 std::vector<VertexId> brioOrder(const double* coords, VertexId n, std::uint64_t seed)
 {
-  std::vector<VertexId> order(static_cast<std::size_t>(n));
+  std::vector<VertexId> order;
+  order.reserve(static_cast<std::size_t>(n));
+  adviseHugePages(order);
+  order.resize(static_cast<std::size_t>(n));
   for (VertexId i = 0; i < n; ++i)
     order[static_cast<std::size_t>(i)] = i;
   SplitMix64 rng{ seed };

@@ -2,6 +2,7 @@
 
 #include "Delaunay.h"
 #include "HilbertSort.h"
+#include "HugePages.h"
 #include "MemoryBudget.h"
 
 #include <algorithm>
@@ -720,6 +721,12 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     mesh.flags.reserve(tets);
     region.reserve(tets);
     h.reserve(vertices);
+    adviseHugePages(mesh.coords);
+    adviseHugePages(mesh.tets);
+    adviseHugePages(mesh.neighbors);
+    adviseHugePages(mesh.flags);
+    adviseHugePages(region);
+    adviseHugePages(h);
   }
 
   double minH = std::numeric_limits<double>::max();
