@@ -4,6 +4,7 @@
 #include "HilbertSort.h"
 #include "HugePages.h"
 #include "MemoryBudget.h"
+#include "TriangleDistance.h"
 
 #include <algorithm>
 #include <array>
@@ -77,60 +78,6 @@ void starOf(TetMesh& mesh, TetId t, VertexId v, std::vector<TetId>& star)
   }
   for (TetId u : star)
     mesh.flags[u] = static_cast<std::uint8_t>(mesh.flags[u] & ~kSeen);
-}
-
-// Squared distance from p to the triangle abc (Ericson, Real-Time Collision Detection 5.1.5).
-double pointTriangleDistance2(const double* p, const double* a, const double* b, const double* c)
-{
-  auto sub = [](const double* x, const double* y, double* r)
-  {
-    r[0] = x[0] - y[0];
-    r[1] = x[1] - y[1];
-    r[2] = x[2] - y[2];
-  };
-  auto dot = [](const double* x, const double* y)
-  { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
-  double ab[3], ac[3], ap[3], q[3];
-  sub(b, a, ab);
-  sub(c, a, ac);
-  sub(p, a, ap);
-  auto at = [&](double v, double w)
-  {
-    for (int k = 0; k < 3; ++k)
-      q[k] = a[k] + v * ab[k] + w * ac[k];
-    double d[3];
-    sub(p, q, d);
-    return dot(d, d);
-  };
-  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0)
-    return at(0, 0);
-  double bp[3];
-  sub(p, b, bp);
-  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3)
-    return at(1, 0);
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0)
-    return at(d1 / (d1 - d3), 0);
-  double cp[3];
-  sub(p, c, cp);
-  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6)
-    return at(0, 1);
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0)
-    return at(0, d2 / (d2 - d6));
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-  {
-    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return at(1 - w, w);
-  }
-  const double denom = va + vb + vc;
-  if (!(denom > 0))
-    return 0; // degenerate triangle: treat as touching
-  return at(vb / denom, vc / denom);
 }
 
 // Vertices bucketed by size class: class L holds sizes in [base 2^L, base 2^(L+1)) (class 0
@@ -356,8 +303,8 @@ public:
         p[2] < box[2] - r || p[2] > box[5] + r)
         return false;
       const VertexId* v = &corners_[3 * static_cast<std::size_t>(id)];
-      return pointTriangleDistance2(p, mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2])) <
-        r * r;
+      return geometry::pointTriangleDistanceSquared(
+               p, mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2])) < r * r;
     };
     for (std::int32_t id : large_)
       if (faceIsNear(id))
