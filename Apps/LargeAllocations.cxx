@@ -93,7 +93,11 @@ void* allocateLarge(std::size_t bytes)
   char* block = base + offset;
   if (mprotect(block, length, PROT_READ | PROT_WRITE) != 0)
     return nullptr;
-  madvise(block, length, MADV_HUGEPAGE); // advice only: without THP, 4 KiB pages
+  // Huge pages over the caller's bytes rounded to the nearest 2 MiB: a tail under 1 MiB
+  // stays on 4 KiB pages, so that no block holds 1 MiB or more that it does not use.
+  const std::size_t full = (kHeader + bytes + kHugePage / 2) & ~(kHugePage - 1);
+  if (full > 0)
+    madvise(block, full, MADV_HUGEPAGE); // advice only: without THP, 4 KiB pages
   *reinterpret_cast<std::size_t*>(block) = length;
   return block + kHeader;
 }
