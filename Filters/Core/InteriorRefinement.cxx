@@ -892,10 +892,13 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     std::unordered_set<std::uint64_t> taken;
     // Work bounds. The key holds 19 bits per index, so a level whose indices would go beyond
     // that is left to the edge splitting (keys would collide, and far beyond, the index would
-    // not even fit an integer). And the candidates examined are bounded: a tet's bounding box
-    // can hold vastly more lattice positions than the size field asks for inside the tet (a
-    // fuzzed cube with a vertex pulled out to 3.4e38 and h ~ 1 at the others), so past the
-    // bound the prefill stops and the edge splitting, bounded by `budget`, does the rest.
+    // not even fit an integer). And the work is bounded: a tet's bounding box can hold vastly
+    // more lattice positions than the size field asks for inside the tet (a fuzzed cube with a
+    // vertex pulled out to 3.4e38 and h ~ 1 at the others), so past a bound on the rows and
+    // positions scanned the prefill stops and the edge splitting, bounded by `budget`, does
+    // the rest. Counted as scanned, not as box volumes: the boxes of a co-spherical surface's
+    // boundary tets (uv_sphere.vtp) span the domain and overlap, and their volumes reached the
+    // bound before the last tets, whose positions the rows' pruning mostly skips anyway.
     constexpr double kMaxLatticeIndex = 1 << 18;
     const double maxCandidates = 16.0 * static_cast<double>(budget) + 1e6;
     double candidates = 0;
@@ -991,17 +994,24 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
         {
           const double shift = sub ? 0.5 : 0.0;
           double from[3], to[3];
-          double positions = 1;
+          double count[3];
           bool keyable = true;
           for (int k = 0; k < 3; ++k)
           {
             from[k] = std::ceil((bmin[k] - origin[k]) / a - shift);
             to[k] = std::floor((bmax[k] - origin[k]) / a - shift);
             keyable = keyable && to[k] < kMaxLatticeIndex; // false for NaN too
-            positions *= std::max(to[k] - from[k] + 1, 0.0);
+            count[k] = std::max(to[k] - from[k] + 1, 0.0);
           }
           if (!keyable)
             continue;
+          // The least this box costs: its rows when they are pruned, else all its positions.
+          const double rows = count[0] * count[1];
+          if (candidates + (pruneRows ? rows : rows * count[2]) > maxCandidates)
+          {
+            candidates = maxCandidates + 1;
+            break;
+          }
           // Only now, in range (from >= -1, as bmin >= lo), convert to integers.
           std::int64_t first[3], last[3];
           for (int k = 0; k < 3; ++k)
@@ -1009,15 +1019,14 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
             first[k] = static_cast<std::int64_t>(from[k]);
             last[k] = static_cast<std::int64_t>(to[k]);
           }
-          candidates += positions;
-          if (candidates > maxCandidates)
-            break;
-          for (std::int64_t i = first[0]; i <= last[0]; ++i)
+          for (std::int64_t i = first[0]; i <= last[0] && candidates <= maxCandidates; ++i)
             for (std::int64_t j = first[1]; j <= last[1]; ++j)
             {
               std::int64_t kFirst = first[2], kLast = last[2];
+              candidates += 1;
               if (pruneRows && !rowRange(i, j, shift, a, origin, first[2], last[2], kFirst, kLast))
                 continue;
+              candidates += static_cast<double>(std::max<std::int64_t>(kLast - kFirst + 1, 0));
               for (std::int64_t k = kFirst; k <= kLast; ++k)
               {
                 const std::uint64_t key = (static_cast<std::uint64_t>(level & 63) << 58) |
