@@ -1,5 +1,6 @@
 #include "SteinerRemoval.h"
 
+#include "DeepEdgeRemoval.h"
 #include "Flips.h"
 #include "MeshTopology.h"
 #include "Predicates.h"
@@ -55,7 +56,9 @@ struct VertexStar
   }
 };
 
-bool removeVertex(TetMesh& mesh, VertexTetIndex& index, VertexId v, VertexStar& star)
+// Removes v by edge removals on its star and a final 4-1 flip; false (v stays, with fewer
+// edges perhaps) when no edge at v can be removed on its own.
+bool removeByEdgeRemovals(TetMesh& mesh, VertexTetIndex& index, VertexId v, VertexStar& star)
 {
   std::vector<TetId> initial;
   vertexStar(mesh, index, v, initial);
@@ -160,18 +163,93 @@ bool removeVertex(TetMesh& mesh, VertexTetIndex& index, VertexId v, VertexStar& 
   return false;
 }
 
+// The neighbours of v, in first-seen order over its star.
+void neighboursOf(const TetMesh& mesh,
+  VertexTetIndex& index,
+  VertexId v,
+  std::vector<TetId>& star,
+  std::vector<VertexId>& neighbours)
+{
+  vertexStar(mesh, index, v, star);
+  neighbours.clear();
+  for (TetId t : star)
+    for (int i = 0; i < 4; ++i)
+    {
+      const VertexId w = mesh.vertex(t, i);
+      if (w != v && std::find(neighbours.begin(), neighbours.end(), w) == neighbours.end())
+        neighbours.push_back(w);
+    }
+}
+
+// One edge at v removed by a flip sequence (DeepEdgeRemoval: an edge whose shell no single
+// edge removal retriangulates validly, e.g. with a reflex link edge), kept only when v ends
+// with fewer neighbours: the sequence may remove link edges from the other end, whose new
+// edges can meet v. `attempts` bounds the sequences tried for this vertex.
+bool removeOneEdgeDeep(TetMesh& mesh,
+  VertexTetIndex& index,
+  DeepEdgeRemoval& deep,
+  VertexId v,
+  int& attempts)
+{
+  // Link levels and moves per sequence, as in boundary recovery.
+  constexpr int kLevels = 2, kBudget = 32;
+  std::vector<TetId> star;
+  std::vector<VertexId> neighbours, after;
+  neighboursOf(mesh, index, v, star, neighbours);
+  const FlipCost noCost;
+  for (VertexId w : neighbours)
+  {
+    if (attempts <= 0)
+      return false;
+    --attempts;
+    deep.journal = {};
+    int budget = kBudget;
+    if (deep.remove(v, w, kLevels, noCost, budget))
+    {
+      neighboursOf(mesh, index, v, star, after);
+      if (after.size() < neighbours.size())
+      {
+        deep.journal = {};
+        return true;
+      }
+    }
+    deep.undoTo(0, 0);
+  }
+  return false;
+}
+
+bool removeVertex(TetMesh& mesh,
+  VertexTetIndex& index,
+  DeepEdgeRemoval& deep,
+  VertexId v,
+  VertexStar& star)
+{
+  // Each flip sequence kept lowers v's degree, so this ends; the attempts, failed ones
+  // included, are bounded too.
+  constexpr int kMaxDeepAttempts = 256;
+  int attempts = kMaxDeepAttempts;
+  while (!removeByEdgeRemovals(mesh, index, v, star))
+  {
+    if (!removeOneEdgeDeep(mesh, index, deep, v, attempts))
+      return false;
+  }
+  return true;
+}
+
 } // namespace
 
 int removeSteinerPoints(TetMesh& mesh, std::vector<VertexId>& steiner)
 {
   VertexTetIndex index;
   index.rebuild(mesh);
+  // Constrained faces keep the input edges: every one has its input triangles around it.
+  DeepEdgeRemoval deep(mesh, index);
   std::vector<VertexId> kept;
   VertexStar star;
   int removed = 0;
   for (VertexId v : steiner)
   {
-    if (removeVertex(mesh, index, v, star))
+    if (removeVertex(mesh, index, deep, v, star))
       ++removed;
     else
       kept.push_back(v);
