@@ -56,9 +56,30 @@ struct VertexStar
   }
 };
 
+// When each vertex last got a new tet from a kept move (a clock per vertex): a Steiner point
+// that could not be removed is tried again only once a vertex its attempt examined has
+// changed, as the same neighbourhood would fail the same way.
+struct Changes
+{
+  std::vector<std::uint64_t> at;
+  std::uint64_t clock = 0;
+
+  void note(const std::vector<TetVertices>& tets)
+  {
+    ++clock;
+    for (const TetVertices& t : tets)
+      for (VertexId v : t)
+        at[v] = clock;
+  }
+};
+
 // Removes v by edge removals on its star and a final 4-1 flip; false (v stays, with fewer
 // edges perhaps) when no edge at v can be removed on its own.
-bool removeByEdgeRemovals(TetMesh& mesh, VertexTetIndex& index, VertexId v, VertexStar& star)
+bool removeByEdgeRemovals(TetMesh& mesh,
+  VertexTetIndex& index,
+  VertexId v,
+  VertexStar& star,
+  Changes& changes)
 {
   std::vector<TetId> initial;
   vertexStar(mesh, index, v, initial);
@@ -125,7 +146,9 @@ bool removeByEdgeRemovals(TetMesh& mesh, VertexTetIndex& index, VertexId v, Vert
         clearNeighbourMarks();
         if (!possible)
           return false;
-        replaceTets(mesh, index, old, { TetVertices{ x, y, z, u } });
+        const std::vector<TetVertices> merged{ TetVertices{ x, y, z, u } };
+        replaceTets(mesh, index, old, merged);
+        changes.note(merged);
         return true;
       }
       const VertexId w = star.neighbours[k];
@@ -139,6 +162,7 @@ bool removeByEdgeRemovals(TetMesh& mesh, VertexTetIndex& index, VertexId v, Vert
         star.remove(old); // every shell tet has the edge, so v
       star.neighbourTet[w] = -1;
       replaceTets(mesh, index, candidate.oldTets, candidate.newTets, &created);
+      changes.note(candidate.newTets);
       for (TetId c : created)
         if (localIndex(mesh, c, v) >= 0)
         {
@@ -189,7 +213,8 @@ bool removeOneEdgeDeep(TetMesh& mesh,
   VertexTetIndex& index,
   DeepEdgeRemoval& deep,
   VertexId v,
-  int& attempts)
+  int& attempts,
+  Changes& changes)
 {
   // Link levels and moves per sequence, as in boundary recovery.
   constexpr int kLevels = 2, kBudget = 32;
@@ -209,6 +234,8 @@ bool removeOneEdgeDeep(TetMesh& mesh,
       neighboursOf(mesh, index, v, star, after);
       if (after.size() < neighbours.size())
       {
+        for (const auto& entry : deep.journal.entries)
+          changes.note(entry.created);
         deep.journal = {};
         return true;
       }
@@ -218,22 +245,37 @@ bool removeOneEdgeDeep(TetMesh& mesh,
   return false;
 }
 
+// Removes v (true), else records in `examined` the vertices whose tets the attempt saw.
 bool removeVertex(TetMesh& mesh,
   VertexTetIndex& index,
   DeepEdgeRemoval& deep,
   VertexId v,
-  VertexStar& star)
+  VertexStar& star,
+  Changes& changes,
+  std::vector<VertexId>& examined)
 {
   // Each flip sequence kept lowers v's degree, so this ends; the attempts, failed ones
   // included, are bounded too.
   constexpr int kMaxDeepAttempts = 256;
   int attempts = kMaxDeepAttempts;
-  while (!removeByEdgeRemovals(mesh, index, v, star))
+  examined.clear();
+  deep.seen = &examined;
+  bool removed = true;
+  while (removed && !removeByEdgeRemovals(mesh, index, v, star, changes))
+    removed = removeOneEdgeDeep(mesh, index, deep, v, attempts, changes);
+  deep.seen = nullptr;
+  if (!removed)
   {
-    if (!removeOneEdgeDeep(mesh, index, deep, v, attempts))
-      return false;
+    // The edge removals looked at v's star: its neighbours.
+    std::vector<TetId> tets;
+    std::vector<VertexId> neighbours;
+    neighboursOf(mesh, index, v, tets, neighbours);
+    examined.insert(examined.end(), neighbours.begin(), neighbours.end());
+    examined.push_back(v);
+    std::sort(examined.begin(), examined.end());
+    examined.erase(std::unique(examined.begin(), examined.end()), examined.end());
   }
-  return true;
+  return removed;
 }
 
 } // namespace
@@ -244,17 +286,50 @@ int removeSteinerPoints(TetMesh& mesh, std::vector<VertexId>& steiner)
   index.rebuild(mesh);
   // Constrained faces keep the input edges: every one has its input triangles around it.
   DeepEdgeRemoval deep(mesh, index);
-  std::vector<VertexId> kept;
   VertexStar star;
-  int removed = 0;
-  for (VertexId v : steiner)
+  Changes changes;
+  changes.at.assign(static_cast<std::size_t>(mesh.vertexCount()), 0);
+  // A point that stays may become removable once later ones are gone: passes over the points
+  // left go on while one removes something (at most kMaxPasses), each retrying only the
+  // points whose examined neighbourhood changed since they failed.
+  constexpr int kMaxPasses = 8;
+  struct Left
   {
-    if (removeVertex(mesh, index, deep, v, star))
-      ++removed;
-    else
-      kept.push_back(v);
+    VertexId v;
+    std::uint64_t failedAt;
+    std::vector<VertexId> examined;
+  };
+  std::vector<Left> left, next;
+  for (VertexId v : steiner)
+    left.push_back({ v, 0, {} });
+  int removed = 0;
+  for (int pass = 0; pass < kMaxPasses; ++pass)
+  {
+    const int before = removed;
+    next.clear();
+    for (Left& item : left)
+    {
+      const bool changed = pass == 0 ||
+        std::any_of(item.examined.begin(),
+          item.examined.end(),
+          [&](VertexId w) { return changes.at[w] > item.failedAt; });
+      if (!changed)
+        next.push_back(std::move(item));
+      else if (removeVertex(mesh, index, deep, item.v, star, changes, item.examined))
+        ++removed;
+      else
+      {
+        item.failedAt = changes.clock;
+        next.push_back(std::move(item));
+      }
+    }
+    left.swap(next);
+    if (removed == before)
+      break;
   }
-  steiner.swap(kept);
+  steiner.clear();
+  for (const Left& item : left)
+    steiner.push_back(item.v);
   return removed;
 }
 

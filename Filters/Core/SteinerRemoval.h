@@ -4,7 +4,8 @@
 // When no edge at the vertex can be removed on its own, one is removed by a flip sequence
 // (DeepEdgeRemoval) that lowers the vertex's degree, and the edge removals go on.
 // Constrained faces are never touched, so the recovered boundary stays. A vertex whose edges
-// cannot all be removed stays in the mesh.
+// cannot all be removed stays in the mesh, and is tried again after the others (a few passes)
+// if its neighbourhood changed meanwhile.
 #pragma once
 
 #include "TetMesh.h"
