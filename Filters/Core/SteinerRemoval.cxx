@@ -256,7 +256,7 @@ bool removeVertex(TetMesh& mesh,
 {
   // Each flip sequence kept lowers v's degree, so this ends; the attempts, failed ones
   // included, are bounded too.
-  constexpr int kMaxDeepAttempts = 256;
+  constexpr int kMaxDeepAttempts = 64;
   int attempts = kMaxDeepAttempts;
   examined.clear();
   deep.seen = &examined;
