@@ -1,5 +1,6 @@
 #include "ConstraintRecovery.h"
 
+#include "DeepEdgeRemoval.h"
 #include "Delaunay.h"
 #include "Flips.h"
 #include "MeshTopology.h"
@@ -250,13 +251,6 @@ FlipCost memoized(const ItemCost& base, const TetMesh& mesh)
   return c;
 }
 
-// Of two moves, the one that lowers the measure more, then the better shaped.
-bool betterMove(const FlipCandidate& a, const FlipCandidate& b)
-{
-  const int gainA = a.oldCost - a.newCost, gainB = b.oldCost - b.newCost;
-  return gainA > gainB || (gainA == gainB && a.minQuality > b.minQuality);
-}
-
 // Cost-neutral moves tried by the one-move lookahead of a stuck flip search.
 constexpr std::size_t kMaxNeutral = 48;
 
@@ -336,31 +330,6 @@ private:
     std::vector<FlipCandidate>* neutral);
   bool lookahead(VertexId seed, const FlipCost& cost, std::vector<FlipCandidate>& neutral);
   bool shrinkCrossingShell(const std::vector<TetId>& pipe, const FlipCost& cost);
-  // One move of a deep removal, kept to undo it. Tets are named by their vertices too: undoing
-  // a later move restores earlier tets under other ids.
-  struct JournalEntry
-  {
-    std::vector<TetId> createdIds;
-    std::vector<TetVertices> created, old;
-  };
-  struct Journal
-  {
-    std::vector<JournalEntry> entries;
-    int delta = 0; // change of the measure over the whole mesh (each move prices its region)
-    int moves = 0; // made, undone or not
-  };
-  void applyJournaled(const FlipCandidate& move, Journal& journal);
-  void undoTo(Journal& journal, std::size_t mark, int delta);
-  // Removes edge (p,q) by moves that never raise the measure: an edge removal, else a 2-3 flip
-  // of a face around it, else (level > 0) first removing the one edge from p or q to the ring
-  // that makes such a 2-3 flip invalid (TetGen's flipnm, its reflex link edge). `budget`
-  // bounds the moves. On failure the moves made stay in `journal` for the caller to undo.
-  bool removeEdgeDeep(VertexId p,
-    VertexId q,
-    int level,
-    const FlipCost& cost,
-    int& budget,
-    Journal& journal);
   // A deep removal of an edge cutting the item that lowers the measure or recovers the item;
   // false, with the same tets (under other ids) when none does. `moved`: tets were replaced.
   bool removeCrossingDeep(const std::vector<TetId>& pipe,
@@ -456,13 +425,13 @@ private:
   std::vector<VertexId> ringScratch_;
   std::unordered_map<std::array<VertexId, 3>, CachedCandidate, TupleHash> edgeRemovalCache_;
   FlipCost lastSearchCost_; // the memoized measure of the latest flipUntil
-  // While set, replace() stamps nothing: a deep removal that is undone leaves the same tets,
-  // and one that is kept stamps everything it changed at once.
-  bool silent_ = false;
   // Deep removals that failed in the current flip search, by edge, with the vertices whose
   // shells they examined (a Failure record): tried again only once one of those changed.
   std::unordered_map<std::uint64_t, Failure> deepFailures_;
-  std::vector<VertexId>* deepSeen_ = nullptr; // collects those vertices during an attempt
+  // Input edges are never removed (their faces may not be recovered yet).
+  DeepEdgeRemoval deep_{ mesh_, index_, [this](VertexId a, VertexId b) {
+                          return inputEdges_.count(edgeKey(a, b)) > 0;
+                        } };
 };
 
 bool Recovery::cachedFlip23(TetId t, int f, const FlipCost& cost, FlipCandidate& out)
@@ -514,8 +483,6 @@ void Recovery::replace(const std::vector<TetId>& oldTets,
   std::vector<TetId>* created)
 {
   replaceTets(mesh_, index_, oldTets, newTets, created);
-  if (silent_)
-    return;
   for (const TetVertices& t : newTets)
     for (VertexId v : t)
       touch(v);
@@ -979,146 +946,6 @@ bool Recovery::shrinkCrossingShell(const std::vector<TetId>& pipe, const FlipCos
   return true;
 }
 
-void Recovery::applyJournaled(const FlipCandidate& move, Journal& journal)
-{
-  JournalEntry entry;
-  for (TetId t : move.oldTets)
-    entry.old.push_back(tetVertices(t));
-  entry.created = move.newTets;
-  replace(move.oldTets, move.newTets, &entry.createdIds);
-  journal.delta += move.newCost - move.oldCost;
-  ++journal.moves;
-  journal.entries.push_back(std::move(entry));
-}
-
-void Recovery::undoTo(Journal& journal, std::size_t mark, int delta)
-{
-  std::vector<TetId> tets;
-  std::vector<TetId>& star = starScratch_;
-  while (journal.entries.size() > mark)
-  {
-    const JournalEntry& entry = journal.entries.back();
-    tets.clear();
-    for (std::size_t i = 0; i < entry.created.size(); ++i)
-    {
-      const TetVertices& v = entry.created[i];
-      TetId id = entry.createdIds[i];
-      if (tetVertices(id) != v)
-      {
-        // Undoing a later move put this tet back under another id: find it by its vertices.
-        vertexStar(mesh_, index_, v[0], star);
-        id = -1;
-        for (TetId t : star)
-        {
-          if (tetVertices(t) == v)
-            id = t;
-        }
-      }
-      tets.push_back(id);
-    }
-    // Moves are undone last first, so every tet a move created is there again.
-    assert(std::find(tets.begin(), tets.end(), TetId(-1)) == tets.end());
-    replace(tets, entry.old);
-    journal.entries.pop_back();
-  }
-  journal.delta = delta;
-}
-
-bool Recovery::removeEdgeDeep(VertexId p,
-  VertexId q,
-  int level,
-  const FlipCost& cost,
-  int& budget,
-  Journal& journal)
-{
-  // Rings longer than this are left alone (TetGen limits its flip star the same way).
-  constexpr int kMaxRing = 10;
-  std::vector<TetId> shell;
-  std::vector<VertexId> ring;
-  FlipCandidate move, best;
-  auto positive = [this](VertexId a, VertexId b, VertexId c, VertexId d)
-  { return predicates::orient3d(point(a), point(b), point(c), point(d)) > 0; };
-  while (budget > 0)
-  {
-    TetId t = findEdge(mesh_, index_, p, q);
-    if (t < 0)
-      return true;
-    if (inputEdges_.count(edgeKey(p, q)) || !edgeShell(mesh_, t, p, q, shell, ring))
-      return false;
-    if (deepSeen_)
-    {
-      deepSeen_->push_back(p);
-      deepSeen_->push_back(q);
-      deepSeen_->insert(deepSeen_->end(), ring.begin(), ring.end());
-    }
-    const int n = static_cast<int>(ring.size());
-    if (n > kMaxRing)
-      return false;
-    for (int k = 0; k < n; ++k)
-    {
-      if (mesh_.isConstrained(shell[k], localIndex(mesh_, shell[k], ring[(k + 1) % n])))
-        return false;
-    }
-    --budget;
-    if (edgeRemovalCandidate(mesh_, t, p, q, cost, move) && move.newCost <= move.oldCost)
-    {
-      applyJournaled(move, journal);
-      return true;
-    }
-    // A 2-3 flip of face (p,q,ring[k]) takes ring[k] out of the ring: the best that does not
-    // raise the measure.
-    bool found = false;
-    for (int k = 0; k < n; ++k)
-    {
-      TetId s = shell[k];
-      if (!flip23Candidate(mesh_, s, localIndex(mesh_, s, ring[(k + 1) % n]), cost, move) ||
-        move.newCost > move.oldCost)
-        continue;
-      if (!found || betterMove(move, best))
-      {
-        best = move;
-        found = true;
-      }
-    }
-    if (found)
-    {
-      applyJournaled(best, journal);
-      continue;
-    }
-    if (level == 0)
-      return false;
-    // No such flip: remove a link edge that blocks one. Face (p,q,r) lies between the tets
-    // (p,q,u,r) and (p,q,r,w), positive; its 2-3 flip makes (p,q,u,w), (w,q,u,r) and
-    // (p,w,u,r), and a non-positive one of the last two names the blocking edge, (q,r) or
-    // (p,r). Only that one is tried, not every edge to the ring.
-    bool progressed = false;
-    const std::vector<VertexId> ringCopy = ring;
-    for (int k = 0; k < n && !progressed && budget > 0; ++k)
-    {
-      const VertexId u = ringCopy[(k + n - 1) % n], r = ringCopy[k], w = ringCopy[(k + 1) % n];
-      if (!positive(p, q, u, w))
-        continue;
-      for (VertexId end : { q, p })
-      {
-        const bool blocks = end == q ? !positive(w, q, u, r) : !positive(p, w, u, r);
-        if (!blocks || inputEdges_.count(edgeKey(end, r)))
-          continue;
-        const std::size_t mark = journal.entries.size();
-        const int delta = journal.delta;
-        if (removeEdgeDeep(end, r, level - 1, cost, budget, journal))
-        {
-          progressed = true;
-          break;
-        }
-        undoTo(journal, mark, delta);
-      }
-    }
-    if (!progressed)
-      return false;
-  }
-  return false;
-}
-
 bool Recovery::removeCrossingDeep(const std::vector<TetId>& pipe,
   const FlipCost& cost,
   const std::function<bool()>& done,
@@ -1142,10 +969,12 @@ bool Recovery::removeCrossingDeep(const std::vector<TetId>& pipe,
       }
     }
   }
-  Journal journal;
+  // Deep removals stamp nothing while they run: one that is undone leaves the same tets, and
+  // one that is kept stamps everything it changed at once.
+  DeepEdgeRemoval::Journal& journal = deep_.journal;
+  journal = {};
   std::vector<VertexId> examined;
-  deepSeen_ = &examined;
-  silent_ = true;
+  deep_.seen = &examined;
   for (const auto& edge : crossing)
   {
     auto failed = deepFailures_.find(edgeKey(edge[0], edge[1]));
@@ -1153,25 +982,25 @@ bool Recovery::removeCrossingDeep(const std::vector<TetId>& pipe,
       continue;
     int budget = kBudget;
     examined.clear();
-    const bool removed = removeEdgeDeep(edge[0], edge[1], kLevels, cost, budget, journal);
+    const bool removed = deep_.remove(edge[0], edge[1], kLevels, cost, budget);
     moved = moved || journal.moves > 0;
     if (removed && (journal.delta < 0 || done()))
     {
-      silent_ = false;
-      deepSeen_ = nullptr;
-      for (const JournalEntry& entry : journal.entries)
+      deep_.seen = nullptr;
+      for (const auto& entry : journal.entries)
       {
         for (const auto* tets : { &entry.old, &entry.created })
           for (const TetVertices& v : *tets)
             for (VertexId x : v)
               touch(x);
       }
-      for (const JournalEntry& entry : journal.entries)
+      for (const auto& entry : journal.entries)
         ++(entry.old.size() == 2 && entry.created.size() == 3 ? result_.flips23
                                                               : result_.edgeRemovals);
+      journal = {};
       return true;
     }
-    undoTo(journal, 0, 0);
+    deep_.undoTo(0, 0);
     // The attempt was undone (no stamps): it would fail the same way until one of the
     // vertices it examined gets a changed tet.
     Failure& failure = deepFailures_[edgeKey(edge[0], edge[1])];
@@ -1180,8 +1009,7 @@ bool Recovery::removeCrossingDeep(const std::vector<TetId>& pipe,
     failure.vertices = examined;
     failure.clock = clock_ + 1;
   }
-  silent_ = false;
-  deepSeen_ = nullptr;
+  deep_.seen = nullptr;
   return false;
 }
 

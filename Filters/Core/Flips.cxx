@@ -70,6 +70,12 @@ double tetShape(const TetMesh& mesh, const TetVertices& t)
   return std::min(1.0, volume / scale);
 }
 
+bool betterMove(const FlipCandidate& a, const FlipCandidate& b)
+{
+  const int gainA = a.oldCost - a.newCost, gainB = b.oldCost - b.newCost;
+  return gainA > gainB || (gainA == gainB && a.minQuality > b.minQuality);
+}
+
 bool flip23Candidate(const TetMesh& mesh, TetId t, int f, const FlipCost& cost, FlipCandidate& out)
 {
   FaceRef n = mesh.neighbor(t, f);

@@ -36,6 +36,9 @@ struct FlipCandidate
 // used only to choose among valid moves.
 double tetShape(const TetMesh& mesh, const TetVertices& t);
 
+// Of two moves, the one that lowers the measure more, then the better shaped.
+bool betterMove(const FlipCandidate& a, const FlipCandidate& b);
+
 // 2-3 flip of face f of tet t. False when the face is constrained or on the hull, or when the
 // segment joining the two apexes does not cross the face's interior.
 bool flip23Candidate(const TetMesh& mesh, TetId t, int f, const FlipCost& cost, FlipCandidate& out);

@@ -1,5 +1,6 @@
 #include "SteinerRemoval.h"
 
+#include "DeepEdgeRemoval.h"
 #include "Flips.h"
 #include "MeshTopology.h"
 #include "Predicates.h"
@@ -55,7 +56,30 @@ struct VertexStar
   }
 };
 
-bool removeVertex(TetMesh& mesh, VertexTetIndex& index, VertexId v, VertexStar& star)
+// When each vertex last got a new tet from a kept move (a clock per vertex): a Steiner point
+// that could not be removed is tried again only once a vertex its attempt examined has
+// changed, as the same neighbourhood would fail the same way.
+struct Changes
+{
+  std::vector<std::uint64_t> at;
+  std::uint64_t clock = 0;
+
+  void note(const std::vector<TetVertices>& tets)
+  {
+    ++clock;
+    for (const TetVertices& t : tets)
+      for (VertexId v : t)
+        at[v] = clock;
+  }
+};
+
+// Removes v by edge removals on its star and a final 4-1 flip; false (v stays, with fewer
+// edges perhaps) when no edge at v can be removed on its own.
+bool removeByEdgeRemovals(TetMesh& mesh,
+  VertexTetIndex& index,
+  VertexId v,
+  VertexStar& star,
+  Changes& changes)
 {
   std::vector<TetId> initial;
   vertexStar(mesh, index, v, initial);
@@ -122,7 +146,9 @@ bool removeVertex(TetMesh& mesh, VertexTetIndex& index, VertexId v, VertexStar& 
         clearNeighbourMarks();
         if (!possible)
           return false;
-        replaceTets(mesh, index, old, { TetVertices{ x, y, z, u } });
+        const std::vector<TetVertices> merged{ TetVertices{ x, y, z, u } };
+        replaceTets(mesh, index, old, merged);
+        changes.note(merged);
         return true;
       }
       const VertexId w = star.neighbours[k];
@@ -136,6 +162,7 @@ bool removeVertex(TetMesh& mesh, VertexTetIndex& index, VertexId v, VertexStar& 
         star.remove(old); // every shell tet has the edge, so v
       star.neighbourTet[w] = -1;
       replaceTets(mesh, index, candidate.oldTets, candidate.newTets, &created);
+      changes.note(candidate.newTets);
       for (TetId c : created)
         if (localIndex(mesh, c, v) >= 0)
         {
@@ -160,23 +187,149 @@ bool removeVertex(TetMesh& mesh, VertexTetIndex& index, VertexId v, VertexStar& 
   return false;
 }
 
+// The neighbours of v, in first-seen order over its star.
+void neighboursOf(const TetMesh& mesh,
+  VertexTetIndex& index,
+  VertexId v,
+  std::vector<TetId>& star,
+  std::vector<VertexId>& neighbours)
+{
+  vertexStar(mesh, index, v, star);
+  neighbours.clear();
+  for (TetId t : star)
+    for (int i = 0; i < 4; ++i)
+    {
+      const VertexId w = mesh.vertex(t, i);
+      if (w != v && std::find(neighbours.begin(), neighbours.end(), w) == neighbours.end())
+        neighbours.push_back(w);
+    }
+}
+
+// One edge at v removed by a flip sequence (DeepEdgeRemoval: an edge whose shell no single
+// edge removal retriangulates validly, e.g. with a reflex link edge), kept only when v ends
+// with fewer neighbours: the sequence may remove link edges from the other end, whose new
+// edges can meet v. `attempts` bounds the sequences tried for this vertex.
+bool removeOneEdgeDeep(TetMesh& mesh,
+  VertexTetIndex& index,
+  DeepEdgeRemoval& deep,
+  VertexId v,
+  int& attempts,
+  Changes& changes)
+{
+  // Link levels and moves per sequence, as in boundary recovery.
+  constexpr int kLevels = 2, kBudget = 32;
+  std::vector<TetId> star;
+  std::vector<VertexId> neighbours, after;
+  neighboursOf(mesh, index, v, star, neighbours);
+  const FlipCost noCost;
+  for (VertexId w : neighbours)
+  {
+    if (attempts <= 0)
+      return false;
+    --attempts;
+    deep.journal = {};
+    int budget = kBudget;
+    if (deep.remove(v, w, kLevels, noCost, budget))
+    {
+      neighboursOf(mesh, index, v, star, after);
+      if (after.size() < neighbours.size())
+      {
+        for (const auto& entry : deep.journal.entries)
+          changes.note(entry.created);
+        deep.journal = {};
+        return true;
+      }
+    }
+    deep.undoTo(0, 0);
+  }
+  return false;
+}
+
+// Removes v (true), else records in `examined` the vertices whose tets the attempt saw.
+bool removeVertex(TetMesh& mesh,
+  VertexTetIndex& index,
+  DeepEdgeRemoval& deep,
+  VertexId v,
+  VertexStar& star,
+  Changes& changes,
+  std::vector<VertexId>& examined)
+{
+  // Each flip sequence kept lowers v's degree, so this ends; the attempts, failed ones
+  // included, are bounded too.
+  constexpr int kMaxDeepAttempts = 64;
+  int attempts = kMaxDeepAttempts;
+  examined.clear();
+  deep.seen = &examined;
+  bool removed = true;
+  while (removed && !removeByEdgeRemovals(mesh, index, v, star, changes))
+    removed = removeOneEdgeDeep(mesh, index, deep, v, attempts, changes);
+  deep.seen = nullptr;
+  if (!removed)
+  {
+    // The edge removals looked at v's star: its neighbours.
+    std::vector<TetId> tets;
+    std::vector<VertexId> neighbours;
+    neighboursOf(mesh, index, v, tets, neighbours);
+    examined.insert(examined.end(), neighbours.begin(), neighbours.end());
+    examined.push_back(v);
+    std::sort(examined.begin(), examined.end());
+    examined.erase(std::unique(examined.begin(), examined.end()), examined.end());
+  }
+  return removed;
+}
+
 } // namespace
 
 int removeSteinerPoints(TetMesh& mesh, std::vector<VertexId>& steiner)
 {
   VertexTetIndex index;
   index.rebuild(mesh);
-  std::vector<VertexId> kept;
+  // Constrained faces keep the input edges: every one has its input triangles around it.
+  DeepEdgeRemoval deep(mesh, index);
   VertexStar star;
-  int removed = 0;
-  for (VertexId v : steiner)
+  Changes changes;
+  changes.at.assign(static_cast<std::size_t>(mesh.vertexCount()), 0);
+  // A point that stays may become removable once later ones are gone: passes over the points
+  // left go on while one removes something (at most kMaxPasses), each retrying only the
+  // points whose examined neighbourhood changed since they failed.
+  constexpr int kMaxPasses = 8;
+  struct Left
   {
-    if (removeVertex(mesh, index, v, star))
-      ++removed;
-    else
-      kept.push_back(v);
+    VertexId v;
+    std::uint64_t failedAt;
+    std::vector<VertexId> examined;
+  };
+  std::vector<Left> left, next;
+  for (VertexId v : steiner)
+    left.push_back({ v, 0, {} });
+  int removed = 0;
+  for (int pass = 0; pass < kMaxPasses; ++pass)
+  {
+    const int before = removed;
+    next.clear();
+    for (Left& item : left)
+    {
+      const bool changed = pass == 0 ||
+        std::any_of(item.examined.begin(),
+          item.examined.end(),
+          [&](VertexId w) { return changes.at[w] > item.failedAt; });
+      if (!changed)
+        next.push_back(std::move(item));
+      else if (removeVertex(mesh, index, deep, item.v, star, changes, item.examined))
+        ++removed;
+      else
+      {
+        item.failedAt = changes.clock;
+        next.push_back(std::move(item));
+      }
+    }
+    left.swap(next);
+    if (removed == before)
+      break;
   }
-  steiner.swap(kept);
+  steiner.clear();
+  for (const Left& item : left)
+    steiner.push_back(item.v);
   return removed;
 }
 

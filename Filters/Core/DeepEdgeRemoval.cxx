@@ -1,0 +1,161 @@
+#include "DeepEdgeRemoval.h"
+
+#include "Predicates.h"
+
+#include <algorithm>
+#include <cassert>
+
+namespace tetmesher
+{
+
+DeepEdgeRemoval::DeepEdgeRemoval(TetMesh& mesh,
+  VertexTetIndex& index,
+  std::function<bool(VertexId, VertexId)> fixedEdge)
+  : mesh_(mesh)
+  , index_(index)
+  , fixedEdge_(std::move(fixedEdge))
+{
+}
+
+void DeepEdgeRemoval::apply(const FlipCandidate& move)
+{
+  JournalEntry entry;
+  for (TetId t : move.oldTets)
+    entry.old.push_back(
+      { mesh_.vertex(t, 0), mesh_.vertex(t, 1), mesh_.vertex(t, 2), mesh_.vertex(t, 3) });
+  entry.created = move.newTets;
+  replaceTets(mesh_, index_, move.oldTets, move.newTets, &entry.createdIds);
+  journal.delta += move.newCost - move.oldCost;
+  ++journal.moves;
+  journal.entries.push_back(std::move(entry));
+}
+
+void DeepEdgeRemoval::undoTo(std::size_t mark, int delta)
+{
+  std::vector<TetId> tets;
+  auto verticesOf = [this](TetId t) -> TetVertices {
+    return { mesh_.vertex(t, 0), mesh_.vertex(t, 1), mesh_.vertex(t, 2), mesh_.vertex(t, 3) };
+  };
+  while (journal.entries.size() > mark)
+  {
+    const JournalEntry& entry = journal.entries.back();
+    tets.clear();
+    for (std::size_t i = 0; i < entry.created.size(); ++i)
+    {
+      const TetVertices& v = entry.created[i];
+      TetId id = entry.createdIds[i];
+      if (verticesOf(id) != v)
+      {
+        // Undoing a later move put this tet back under another id: find it by its vertices.
+        vertexStar(mesh_, index_, v[0], star_);
+        id = -1;
+        for (TetId t : star_)
+        {
+          if (verticesOf(t) == v)
+            id = t;
+        }
+      }
+      tets.push_back(id);
+    }
+    // Moves are undone last first, so every tet a move created is there again.
+    assert(std::find(tets.begin(), tets.end(), TetId(-1)) == tets.end());
+    replaceTets(mesh_, index_, tets, entry.old);
+    journal.entries.pop_back();
+  }
+  journal.delta = delta;
+}
+
+bool DeepEdgeRemoval::remove(VertexId p, VertexId q, int level, const FlipCost& cost, int& budget)
+{
+  // Rings longer than this are left alone (TetGen limits its flip star the same way).
+  constexpr int kMaxRing = 10;
+  std::vector<TetId> shell;
+  std::vector<VertexId> ring;
+  FlipCandidate move, best;
+  auto positive = [this](VertexId a, VertexId b, VertexId c, VertexId d)
+  {
+    return predicates::orient3d(mesh_.point(a), mesh_.point(b), mesh_.point(c), mesh_.point(d)) > 0;
+  };
+  auto fixed = [this](VertexId a, VertexId b) { return fixedEdge_ && fixedEdge_(a, b); };
+  while (budget > 0)
+  {
+    TetId t = findEdge(mesh_, index_, p, q);
+    if (t < 0)
+      return true;
+    if (fixed(p, q) || !edgeShell(mesh_, t, p, q, shell, ring))
+      return false;
+    if (seen)
+    {
+      seen->push_back(p);
+      seen->push_back(q);
+      seen->insert(seen->end(), ring.begin(), ring.end());
+    }
+    const int n = static_cast<int>(ring.size());
+    if (n > kMaxRing)
+      return false;
+    for (int k = 0; k < n; ++k)
+    {
+      if (mesh_.isConstrained(shell[k], localIndex(mesh_, shell[k], ring[(k + 1) % n])))
+        return false;
+    }
+    --budget;
+    if (edgeRemovalCandidate(mesh_, t, p, q, cost, move) && move.newCost <= move.oldCost)
+    {
+      apply(move);
+      return true;
+    }
+    // A 2-3 flip of face (p,q,ring[k]) takes ring[k] out of the ring: the best that does not
+    // raise the measure.
+    bool found = false;
+    for (int k = 0; k < n; ++k)
+    {
+      TetId s = shell[k];
+      if (!flip23Candidate(mesh_, s, localIndex(mesh_, s, ring[(k + 1) % n]), cost, move) ||
+        move.newCost > move.oldCost)
+        continue;
+      if (!found || betterMove(move, best))
+      {
+        best = move;
+        found = true;
+      }
+    }
+    if (found)
+    {
+      apply(best);
+      continue;
+    }
+    if (level == 0)
+      return false;
+    // No such flip: remove a link edge that blocks one. Face (p,q,r) lies between the tets
+    // (p,q,u,r) and (p,q,r,w), positive; its 2-3 flip makes (p,q,u,w), (w,q,u,r) and
+    // (p,w,u,r), and a non-positive one of the last two names the blocking edge, (q,r) or
+    // (p,r). Only that one is tried, not every edge to the ring.
+    bool progressed = false;
+    const std::vector<VertexId> ringCopy = ring;
+    for (int k = 0; k < n && !progressed && budget > 0; ++k)
+    {
+      const VertexId u = ringCopy[(k + n - 1) % n], r = ringCopy[k], w = ringCopy[(k + 1) % n];
+      if (!positive(p, q, u, w))
+        continue;
+      for (VertexId end : { q, p })
+      {
+        const bool blocks = end == q ? !positive(w, q, u, r) : !positive(p, w, u, r);
+        if (!blocks || fixed(end, r))
+          continue;
+        const std::size_t mark = journal.entries.size();
+        const int delta = journal.delta;
+        if (remove(end, r, level - 1, cost, budget))
+        {
+          progressed = true;
+          break;
+        }
+        undoTo(mark, delta);
+      }
+    }
+    if (!progressed)
+      return false;
+  }
+  return false;
+}
+
+} // namespace tetmesher

@@ -1,0 +1,61 @@
+// Removal of an edge by a bounded sequence of flips (TetGen's flipnm): an edge removal, else
+// the best 2-3 flip of a face around the edge (it takes one vertex out of the edge's ring),
+// else, one level down, first removing the link edge that makes such a flip invalid. Every
+// move is kept in a journal so that a sequence that does not pay off can be undone. Used by
+// boundary recovery (moves that never raise its measure) and by the removal of recovery
+// Steiner points (any valid move: the measure is empty).
+#pragma once
+
+#include "Flips.h"
+
+#include <functional>
+#include <vector>
+
+namespace tetmesher
+{
+
+class DeepEdgeRemoval
+{
+public:
+  // One move, kept to undo it. Tets are named by their vertices too: undoing a later move
+  // restores earlier tets under other ids.
+  struct JournalEntry
+  {
+    std::vector<TetId> createdIds;
+    std::vector<TetVertices> created, old;
+  };
+  struct Journal
+  {
+    std::vector<JournalEntry> entries;
+    int delta = 0; // change of the measure over the whole mesh (each move prices its region)
+    int moves = 0; // made, undone or not
+  };
+
+  // `fixedEdge` (may be empty) names edges that are never removed, besides those with a
+  // constrained face around them.
+  DeepEdgeRemoval(TetMesh& mesh,
+    VertexTetIndex& index,
+    std::function<bool(VertexId, VertexId)> fixedEdge = {});
+
+  // Removes edge (p,q) by moves that never raise `cost`; `level` link levels, `budget` moves
+  // at most (decremented per shell examined). On failure the moves made stay in the journal
+  // for the caller to undo.
+  bool remove(VertexId p, VertexId q, int level, const FlipCost& cost, int& budget);
+  // Undoes the moves after the first `mark` entries and sets the journal's delta.
+  void undoTo(std::size_t mark, int delta);
+
+  Journal journal;
+  // When set, collects the vertices of every shell examined (to tell when a failed attempt
+  // could succeed: once one of their tets changed).
+  std::vector<VertexId>* seen = nullptr;
+
+private:
+  void apply(const FlipCandidate& move);
+
+  TetMesh& mesh_;
+  VertexTetIndex& index_;
+  std::function<bool(VertexId, VertexId)> fixedEdge_;
+  std::vector<TetId> star_;
+};
+
+} // namespace tetmesher
