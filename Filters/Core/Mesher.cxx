@@ -114,15 +114,34 @@ MesherResult meshSurface(const double* points,
     return result;
   }
 
+  RegionOptions regionOptions;
+  regionOptions.firstBoxVertex = delaunay.firstBoxVertex;
+  regionOptions.enclosedShellsAreHoles = options.enclosedShellsAreHoles;
   if (options.removeSteinerPoints && !recovery.steinerVertices.empty())
-    removeSteinerPoints(mesh, recovery.steinerVertices);
+  {
+    // Steiner points outside every region go with the exterior tets (stage 3), and removing
+    // them would change no kept tet (no move crosses a constrained face): only the others
+    // are removed. Classifying is one flood fill, and the moves keep every region.
+    const RegionResult early = classifyRegions(mesh, regionOptions);
+    std::vector<char> inside(static_cast<std::size_t>(mesh.vertexCount()), 0);
+    for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+    {
+      if (!mesh.isDeleted(t) && early.tetRegion[t] >= 0)
+        for (int i = 0; i < 4; ++i)
+          inside[mesh.vertex(t, i)] = 1;
+    }
+    std::vector<VertexId> kept;
+    for (VertexId v : recovery.steinerVertices)
+    {
+      if (inside[v])
+        kept.push_back(v);
+    }
+    removeSteinerPoints(mesh, kept);
+  }
   result.recoverySeconds = secondsSince(stageStart);
 
   // Stage 3: exterior removal and regions.
   stageStart = std::chrono::steady_clock::now();
-  RegionOptions regionOptions;
-  regionOptions.firstBoxVertex = delaunay.firstBoxVertex;
-  regionOptions.enclosedShellsAreHoles = options.enclosedShellsAreHoles;
   RegionResult regions = classifyRegions(mesh, regionOptions);
   result.regionCount = regions.regionCount;
 
