@@ -347,7 +347,9 @@ private:
   std::string nearlyTouchingTriangles(std::size_t key) const;
   // The input triangles of the recovery item `key` (an edge's triangles, or the triangle).
   std::vector<std::size_t> itemTriangles(std::size_t key) const;
-  bool onInputSurface(const double* x) const;
+  // On an input triangle (exact), or nearer one than tolerance (floating point): a Steiner
+  // point that close is strictly inside by the exact tests but on the surface for any user.
+  bool onInputSurface(const double* x, double tolerance) const;
   void markConstrained(FaceRef face);
   // True when the time budget is spent or the progress callback asked to abort (polled a
   // few times a second); result_.error then names the item being recovered.
@@ -1013,16 +1015,18 @@ bool Recovery::removeCrossingDeep(const std::vector<TetId>& pipe,
   return false;
 }
 
-bool Recovery::onInputSurface(const double* x) const
+bool Recovery::onInputSurface(const double* x, double tolerance) const
 {
   for (std::size_t i = 0; i < surface_.triangles.size(); ++i)
   {
     const auto& box = triangleBoxes_[i];
-    if (x[0] < box[0] || x[1] < box[1] || x[2] < box[2] || x[0] > box[3] || x[1] > box[4] ||
-      x[2] > box[5])
+    if (x[0] < box[0] - tolerance || x[1] < box[1] - tolerance || x[2] < box[2] - tolerance ||
+      x[0] > box[3] + tolerance || x[1] > box[4] + tolerance || x[2] > box[5] + tolerance)
       continue;
     const auto& t = surface_.triangles[i];
-    if (geometry::pointOnTriangle(x, point(t[0]), point(t[1]), point(t[2])))
+    if (geometry::pointOnTriangle(x, point(t[0]), point(t[1]), point(t[2])) ||
+      geometry::pointTriangleDistanceSquared(x, point(t[0]), point(t[1]), point(t[2])) <
+        tolerance * tolerance)
       return true;
   }
   return false;
@@ -1088,7 +1092,15 @@ bool Recovery::insertSteinerNear(VertexId seed, const ItemCost& exactCost)
       if (candidate.p >= 0)
         c[k] = 0.2 * c[k] + 0.4 * (point(candidate.p)[k] + point(candidate.q)[k]);
     }
-    if (!geometry::pointInsideTet(c, p) || onInputSurface(c))
+    // Flat tets on planar parts of the surface put c within rounding of a face (5.6e-17 on
+    // gear.vtp, with 0.01-sized tets): refused at 1e-9 of the tet's longest edge.
+    double longest = 0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        longest = std::max(longest,
+          (p[i][0] - p[j][0]) * (p[i][0] - p[j][0]) + (p[i][1] - p[j][1]) * (p[i][1] - p[j][1]) +
+            (p[i][2] - p[j][2]) * (p[i][2] - p[j][2]));
+    if (!geometry::pointInsideTet(c, p) || onInputSurface(c, 1e-9 * std::sqrt(longest)))
       continue;
     if (insertSteiner(c, candidate.tet))
       return true;
