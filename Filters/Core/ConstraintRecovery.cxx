@@ -1100,7 +1100,7 @@ bool Recovery::insertSteinerNear(VertexId seed, const ItemCost& exactCost)
         longest = std::max(longest,
           (p[i][0] - p[j][0]) * (p[i][0] - p[j][0]) + (p[i][1] - p[j][1]) * (p[i][1] - p[j][1]) +
             (p[i][2] - p[j][2]) * (p[i][2] - p[j][2]));
-    if (!geometry::pointInsideTet(c, p) || onInputSurface(c, 1e-9 * std::sqrt(longest)))
+    if (!geometry::pointInsideTet(c, p) || onInputSurface(c, 1e-6 * std::sqrt(longest)))
       continue;
     if (insertSteiner(c, candidate.tet))
       return true;
@@ -1408,6 +1408,18 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
       VertexId a = edges[e][0], b = edges[e][1];
       for (int k = burst(e); k > 0 && !edgePresent(e); --k)
       {
+        // Steiner points placed since the flip search failed (for other items this round)
+        // may have freed its flips: search again before placing one for this edge.
+        if (!unchangedSince(failures_[e]))
+        {
+          auto exists = [&] { return edgePresent(e); };
+          currentItem_ = edgeName(e);
+          if (flipUntil(a, edgeCost(a, b), exists) || flipUntil(a, edgeAndFacesCost(e), exists))
+            break;
+          if (interrupted_)
+            return result_;
+          recordFailure(failures_[e], a, lastSearchCost_);
+        }
         // Alternate between placing the point against the edge alone and against the edge
         // and its triangles (which reaches tets straddling a planar part of the surface).
         bool alone = steinerPerItem_[e] % 2 == 0;
