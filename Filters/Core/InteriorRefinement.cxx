@@ -792,14 +792,13 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   };
   // Inserts p (in `container`, of region r) with size hp unless a vertex or a constrained
   // face is too close or the kernel refuses it. Returns a tet of the new vertex, or -1.
-  auto tryInsert =
-    [&](
-      const double* p, TetId container, double hp, std::int32_t r, double boundaryDistance) -> TetId
+  // Is p (size hp) too close to a vertex or a constrained face? (Counted.)
+  auto refused = [&](const double* p, double hp, double boundaryDistance)
   {
     if (checkProximity && grid.hasNear(p, hp, h))
     {
       ++result.rejectedNearVertex;
-      return -1;
+      return true;
     }
     // Faces' own clearances scale like the distances in h: the edge splitting fills the
     // layer the lattice leaves next to them.
@@ -808,8 +807,20 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
         mesh, p, boundaryDistance * hp, boundaryDistance / options.latticeBoundaryDistance))
     {
       ++result.rejectedNearBoundary;
-      return -1;
+      return true;
     }
+    return false;
+  };
+  // Inserts p unless refused; checked = the caller has just asked `refused`.
+  auto tryInsert = [&](const double* p,
+                     TetId container,
+                     double hp,
+                     std::int32_t r,
+                     double boundaryDistance,
+                     bool checked = false) -> TetId
+  {
+    if (!checked && refused(p, hp, boundaryDistance))
+      return -1;
     const VertexId v = mesh.addVertex(p[0], p[1], p[2]);
     const InsertResult inserted = insertVertex(mesh, v, container, *workspace);
     if (inserted.status != InsertStatus::Inserted)
@@ -1116,6 +1127,11 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       // Walk from the last insertion (close: each round is Hilbert-sorted), else from the corners
       // of the initial tet that contained q (the segment from a corner to q lies in that tet, so
       // inside the domain even when it is not convex); the exhaustive search last.
+      // The point's size is known, so the proximity tests go first: most refused lattice
+      // points are refused there (fine cube: 29k next to the faces for 40k inserted), and
+      // then need no walk. The same points go in: neither test depends on the container.
+      if (refused(q.p, q.h, options.latticeBoundaryDistance))
+        continue;
       TetId container = walkToPoint(mesh, q.p, hint);
       for (int i = 0; i < 4 && container < 0; ++i)
         container = walkToPoint(mesh, q.p, vertexTet[q.corner[i]]);
@@ -1124,7 +1140,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       if (container < 0 || region[container] != initialRegion[q.tet])
         continue;
       const TetId made =
-        tryInsert(q.p, container, q.h, initialRegion[q.tet], options.latticeBoundaryDistance);
+        tryInsert(q.p, container, q.h, initialRegion[q.tet], options.latticeBoundaryDistance, true);
       if (made < 0)
         continue;
       hint = made;
