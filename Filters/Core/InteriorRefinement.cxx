@@ -226,7 +226,6 @@ public:
   {
     for (int k = 0; k < 3; ++k)
       origin_[k] = origin[k];
-    std::vector<std::pair<TetId, int>> faces;
     for (TetId t = 0; t < mesh.tetCapacity(); ++t)
     {
       if (mesh.isDeleted(t))
@@ -238,7 +237,6 @@ public:
         const FaceRef n = mesh.neighbor(t, f);
         if (n != kNoNeighbor && faceTet(n) < t)
           continue; // an interface face, listed from its other side
-        faces.emplace_back(t, f);
         double longest = 0, smallestSize = std::numeric_limits<double>::max();
         for (int k = 0; k < 3; ++k)
         {
@@ -264,7 +262,7 @@ public:
       cell = std::max(cell, positive[positive.size() / 2]);
     }
     cell_ = cell;
-    for (std::size_t id = 0; id < faces.size(); ++id)
+    for (std::size_t id = 0; id < clearance_.size(); ++id)
     {
       double lo[3], hi[3];
       for (int k = 0; k < 3; ++k)
