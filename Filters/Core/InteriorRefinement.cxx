@@ -1,5 +1,6 @@
 #include "InteriorRefinement.h"
 
+#include "BoundarySizeFloor.h"
 #include "Delaunay.h"
 #include "HilbertSort.h"
 #include "HugePages.h"
@@ -206,23 +207,11 @@ private:
 // The constrained faces (boundary, interfaces) in a hash grid, for the distance from a
 // candidate point to the nearest one. They never change during refinement (no point goes on
 // them, no cavity crosses them), so the grid is built once.
-//
-// A face may also have a clearance of its own, `clearanceFactor` times its longest edge,
-// where that exceeds `minDistance` times its vertices' smallest size: no point is placed
-// nearer. A face larger than h otherwise gets its tet's apex from the first layer of points
-// at ~h, a flat tet no optimisation can lift (torus at h/2, faces of 3h: the worst tets were
-// all on such faces, apex at 0.25 of the face's edge). Such a face is listed in every cell
-// its clearance reaches, so a query still only looks at the cells of its own radius.
 class FaceGrid
 {
 public:
-  FaceGrid(const TetMesh& mesh,
-    double cell,
-    const double* origin,
-    double clearanceFactor,
-    double maxClearance,
-    double minDistance,
-    const std::vector<double>& h)
+  FaceGrid(const TetMesh& mesh, double cell, const double* origin)
+    : cell_(cell)
   {
     for (int k = 0; k < 3; ++k)
       origin_[k] = origin[k];
@@ -237,64 +226,39 @@ public:
         const FaceRef n = mesh.neighbor(t, f);
         if (n != kNoNeighbor && faceTet(n) < t)
           continue; // an interface face, listed from its other side
-        double longest = 0, smallestSize = std::numeric_limits<double>::max();
+        const std::int32_t id = static_cast<std::int32_t>(corners_.size() / 3);
+        double lo[3], hi[3];
         for (int k = 0; k < 3; ++k)
         {
           const VertexId v = mesh.vertex(t, kFaceVertices[f][k]);
-          const VertexId w = mesh.vertex(t, kFaceVertices[f][(k + 1) % 3]);
           corners_.push_back(v);
-          longest = std::max(longest, distance(mesh.point(v), mesh.point(w)));
-          smallestSize = std::min(smallestSize, h[v]);
+          for (int a = 0; a < 3; ++a)
+          {
+            lo[a] = k == 0 ? mesh.point(v)[a] : std::min(lo[a], mesh.point(v)[a]);
+            hi[a] = k == 0 ? mesh.point(v)[a] : std::max(hi[a], mesh.point(v)[a]);
+          }
         }
-        const double clearance = std::min(clearanceFactor * longest, maxClearance * smallestSize);
-        clearance_.push_back(
-          clearance > minDistance * smallestSize && std::isfinite(clearance) ? clearance : 0.0);
-      }
-    }
-    // Cells no smaller than the median clearance, so that a face's clearance spans a few.
-    std::vector<double> positive;
-    for (double c : clearance_)
-      if (c > 0)
-        positive.push_back(c);
-    if (!positive.empty())
-    {
-      std::nth_element(positive.begin(), positive.begin() + positive.size() / 2, positive.end());
-      cell = std::max(cell, positive[positive.size() / 2]);
-    }
-    cell_ = cell;
-    for (std::size_t id = 0; id < clearance_.size(); ++id)
-    {
-      double lo[3], hi[3];
-      for (int k = 0; k < 3; ++k)
-      {
-        const double* x = mesh.point(corners_[3 * id + k]);
-        for (int a = 0; a < 3; ++a)
+        boxes_.insert(boxes_.end(), { lo[0], lo[1], lo[2], hi[0], hi[1], hi[2] });
+        std::int64_t c0[3], c1[3];
+        if (cellRange(lo, hi, 0, c0, c1) > kMaxCellsPerFace)
         {
-          lo[a] = k == 0 ? x[a] : std::min(lo[a], x[a]);
-          hi[a] = k == 0 ? x[a] : std::max(hi[a], x[a]);
+          large_.push_back(id);
+          continue;
         }
+        for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
+          for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
+            for (std::int64_t k = c0[2]; k <= c1[2]; ++k)
+              cells_[key(i, j, k)].push_back(id);
       }
-      boxes_.insert(boxes_.end(), { lo[0], lo[1], lo[2], hi[0], hi[1], hi[2] });
-      std::int64_t c0[3], c1[3];
-      if (cellRange(lo, hi, clearance_[id], c0, c1) > kMaxCellsPerFace)
-      {
-        large_.push_back(static_cast<std::int32_t>(id));
-        continue;
-      }
-      for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
-        for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
-          for (std::int64_t k = c0[2]; k <= c1[2]; ++k)
-            cells_[key(i, j, k)].push_back(static_cast<std::int32_t>(id));
     }
   }
 
-  // Is a constrained face closer to p than limit, or than its own clearance times
-  // clearanceScale (<= 1)?
-  bool near(const TetMesh& mesh, const double* p, double limit, double clearanceScale) const
+  // Is a constrained face closer to p than limit?
+  bool near(const TetMesh& mesh, const double* p, double limit) const
   {
     auto faceIsNear = [&](std::int32_t id)
     {
-      const double r = std::max(limit, clearanceScale * clearance_[static_cast<std::size_t>(id)]);
+      const double r = limit;
       // Bounding box first: most faces of a cell are farther than r.
       const double* box = &boxes_[6 * static_cast<std::size_t>(id)];
       if (p[0] < box[0] - r || p[0] > box[3] + r || p[1] < box[1] - r || p[1] > box[4] + r ||
@@ -368,8 +332,7 @@ private:
   double cell_;
   double origin_[3];
   std::vector<VertexId> corners_;
-  std::vector<double> boxes_;     // per face: min x y z, max x y z
-  std::vector<double> clearance_; // per face, 0: none
+  std::vector<double> boxes_; // per face: min x y z, max x y z
   std::unordered_map<std::uint64_t, std::vector<std::int32_t>> cells_;
   std::vector<std::int32_t> large_; // faces over kMaxCellsPerFace cells
 };
@@ -465,6 +428,75 @@ struct EdgeGraph
     }
   }
 };
+
+// The floor under the sizes next to boundary faces larger than h (BoundarySizeFloor.h). A
+// face's size at its vertices is the mean length of the constrained edges there, graded like h
+// (a face next to a small feature asks for less); the face takes the smallest of its three,
+// less (matched - 1) times the smallest wanted size h_F at its vertices (a face whose edges
+// the field already accepts adds nothing) and at most maxRatio h_F. Empty when off.
+BoundarySizeFloor makeBoundarySizeFloor(const TetMesh& mesh,
+  const std::vector<double>& h,
+  const EdgeGraph& graph,
+  double gradation,
+  double maxRatio,
+  double matched)
+{
+  if (!(gradation > 1) || !(maxRatio > 1))
+    return {};
+  const VertexId n = static_cast<VertexId>(h.size());
+  std::vector<double> edgeSum(h.size(), 0.0);
+  std::vector<int> edgeCount(h.size(), 0);
+  std::vector<std::int32_t> corners;
+  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+  {
+    if (mesh.isDeleted(t))
+      continue;
+    for (int f = 0; f < 4; ++f)
+    {
+      if (!faceIsConstrained(mesh, t, f))
+        continue;
+      const FaceRef other = mesh.neighbor(t, f);
+      if (other != kNoNeighbor && faceTet(other) < t)
+        continue; // an interface face, taken from its other side
+      for (int k = 0; k < 3; ++k)
+      {
+        const VertexId v = mesh.vertex(t, kFaceVertices[f][k]);
+        const VertexId w = mesh.vertex(t, kFaceVertices[f][(k + 1) % 3]);
+        corners.push_back(v);
+        const double l = distance(mesh.point(v), mesh.point(w));
+        edgeSum[v] += l;
+        edgeSum[w] += l;
+        edgeCount[v] += 1;
+        edgeCount[w] += 1;
+      }
+    }
+  }
+  if (corners.empty())
+    return {};
+  std::vector<double> surfaceSize(h.size(), std::numeric_limits<double>::max());
+  for (VertexId v = 0; v < n; ++v)
+    if (edgeCount[v] > 0)
+      surfaceSize[v] = edgeSum[v] / edgeCount[v];
+  limitGradation(mesh.coords.data(),
+    n,
+    graph.offsets.data(),
+    graph.targets.data(),
+    gradation,
+    surfaceSize.data());
+  std::vector<double> faceSize, faceBase;
+  for (std::size_t id = 0; id < corners.size() / 3; ++id)
+  {
+    double size = std::numeric_limits<double>::max(), base = size;
+    for (int k = 0; k < 3; ++k)
+    {
+      size = std::min(size, surfaceSize[corners[3 * id + k]]);
+      base = std::min(base, h[corners[3 * id + k]]);
+    }
+    faceSize.push_back(std::min(size - (matched - 1) * base, maxRatio * base));
+    faceBase.push_back(base);
+  }
+  return BoundarySizeFloor(mesh.coords.data(), corners, faceSize, faceBase, gradation - 1);
+}
 
 struct Candidate
 {
@@ -677,6 +709,25 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   double minH = std::numeric_limits<double>::max();
   for (double value : h)
     minH = std::min(minH, value);
+  // The floor next to faces larger than h (BoundarySizeFloor.h) raises the sizes of the
+  // initial vertices, the sizes of their edges; interpolation keeps their wanted sizes, or
+  // the boundary mesh's long tets would carry the faces' sizes across the domain.
+  const std::vector<double> wanted(h.begin(), h.end());
+  const BoundarySizeFloor sizeFloor = makeBoundarySizeFloor(
+    mesh, h, graph, sizeOptions.gradation, options.maxFloorRatio, options.maxEdgeRatio);
+  // hp raised to the floor at p (clamped by the largest size the user allows).
+  auto raiseToFloor = [&](const double* p, double hp)
+  {
+    if (sizeFloor.empty())
+      return hp;
+    double f = sizeFloor.at(p, hp);
+    if (sizeOptions.maxSize > 0)
+      f = std::min(f, sizeOptions.maxSize);
+    return std::max(hp, f);
+  };
+  for (VertexId v = 0; v < initialCount; ++v)
+    h[v] = raiseToFloor(mesh.point(v), h[v]);
+  auto interpolationSize = [&](VertexId v) { return v < initialCount ? wanted[v] : h[v]; };
   const bool checkProximity = options.minPointDistance > 0;
   ProximityGrid grid(minH, std::max(options.minPointDistance, 1e-3), lo);
   if (checkProximity)
@@ -693,13 +744,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     const double radius = std::max({ options.minBoundaryDistance,
       options.latticeSpacing > 0 ? options.latticeBoundaryDistance : 0.0,
       0.1 });
-    faces = std::make_unique<FaceGrid>(mesh,
-      radius * sorted[sorted.size() / 2],
-      lo,
-      options.faceClearance,
-      options.maxFaceClearance,
-      std::max(options.minBoundaryDistance, options.latticeBoundaryDistance),
-      h);
+    faces = std::make_unique<FaceGrid>(mesh, radius * sorted[sorted.size() / 2], lo);
   }
 
   auto lap = [last = std::chrono::steady_clock::now()]() mutable
@@ -771,7 +816,8 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     if (background)
     {
       hp = background(p);
-      return hp > 0 && std::isfinite(hp) ? scaleAndClampSize(hp, sizeOptions) : fallback;
+      hp = hp > 0 && std::isfinite(hp) ? scaleAndClampSize(hp, sizeOptions) : fallback;
+      return raiseToFloor(p, hp);
     }
     const double* corners[4];
     double hc[4];
@@ -779,14 +825,14 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     {
       const VertexId w = mesh.vertex(container, i);
       corners[i] = mesh.point(w);
-      hc[i] = h[w];
+      hc[i] = interpolationSize(w);
     }
     hp = interpolateSize(p, corners, hc, sizeOptions.interpolationPower);
     if (sizeOptions.minSize > 0)
       hp = std::max(hp, sizeOptions.minSize);
     if (sizeOptions.maxSize > 0)
       hp = std::min(hp, sizeOptions.maxSize);
-    return hp;
+    return raiseToFloor(p, hp);
   };
   // Inserts p (in `container`, of region r) with size hp unless a vertex or a constrained
   // face is too close or the kernel refuses it. Returns a tet of the new vertex, or -1.
@@ -798,11 +844,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       ++result.rejectedNearVertex;
       return true;
     }
-    // Faces' own clearances scale like the distances in h: the edge splitting fills the
-    // layer the lattice leaves next to them.
-    if (boundaryDistance > 0 &&
-      faces->near(
-        mesh, p, boundaryDistance * hp, boundaryDistance / options.latticeBoundaryDistance))
+    if (boundaryDistance > 0 && faces->near(mesh, p, boundaryDistance * hp))
     {
       ++result.rejectedNearBoundary;
       return true;
@@ -923,9 +965,9 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       for (int i = 0; i < 4; ++i)
       {
         c[i] = mesh.point(mesh.vertex(t, i));
-        hc[i] = h[mesh.vertex(t, i)];
+        hc[i] = wanted[mesh.vertex(t, i)];
         hlo = std::min(hlo, hc[i]);
-        hhi = std::max(hhi, hc[i]);
+        hhi = std::max(hhi, h[mesh.vertex(t, i)]); // the floor raised it near large faces
         for (int k = 0; k < 3; ++k)
         {
           bmin[k] = i == 0 ? c[i][k] : std::min(bmin[k], c[i][k]);
@@ -1071,7 +1113,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
                   hp = background(p);
                   if (!(hp > 0) || !std::isfinite(hp))
                     continue;
-                  hp = scaleAndClampSize(hp, sizeOptions);
+                  hp = raiseToFloor(p, scaleAndClampSize(hp, sizeOptions));
                   // One lattice only with a background field: where it matches.
                   if (std::fabs(std::log(hp / a * options.latticeSpacing)) > 0.5 * logRatio)
                     continue;
@@ -1083,6 +1125,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
                     hp = std::max(hp, sizeOptions.minSize);
                   if (sizeOptions.maxSize > 0)
                     hp = std::min(hp, sizeOptions.maxSize);
+                  hp = raiseToFloor(p, hp);
                   if (levelOfSize(hp) != level)
                     continue;
                 }

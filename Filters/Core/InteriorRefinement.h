@@ -48,13 +48,15 @@ struct RefinementOptions
   // (1.47 h) next to the boundary, too long and unsplittable (their midpoints are 0.52 h from
   // the lattice's next layer); at 0.8 h the edge splitting fills the layer.
   double latticeBoundaryDistance = 0.8;
-  // ... or when a constrained face is closer than this times the face's longest edge, where
-  // that is more than the above in units of its vertices' h: a face much larger than h
-  // needs a tall tet on it, so the points of size h keep off it. 0: off.
-  double faceClearance = 0.4;
-  // ... at most this many h (of the face's vertices): a face far larger than h (a cube of 12
-  // triangles meshed at h = 1/10) still gets points of size h inside.
-  double maxFaceClearance = 2;
+  // Floor under the sizes next to boundary faces larger than h (BoundarySizeFloor.h), falling
+  // at the gradation's rate (off with the gradation): at a face, the mean length of the
+  // boundary edges at its vertices less (maxEdgeRatio - 1) h, so that a face the field
+  // already matches adds nothing, and at most this many h, so that a face far larger than h
+  // (a cube of 12 triangles at h = 1/20) still gets points of size h inside. Unit cube of
+  // 0.14-edge triangles at h = 0.025..0.05: min dihedral 16.4..28.2 degrees without the floor,
+  // 29..30 with it (6 gives the same quality with fewer points, 3 lets Q min fall to 0.29).
+  // <= 1: off.
+  double maxFloorRatio = 4;
   // Bound on the number of rounds (each round splits the edges too long at its start).
   int maxRounds = 200;
   // Refuse (ok = false, before inserting any point) when the estimated memory of the refined

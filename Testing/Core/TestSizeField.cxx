@@ -1,5 +1,6 @@
 // Size field: boundary edge sizes, the paper's power-mean interpolation, scaling and clamping,
-// and the gradation limit.
+// and the gradation limit; the floor under the sizes next to large boundary faces.
+#include "BoundarySizeFloor.h"
 #include "SizeField.h"
 
 #include <gtest/gtest.h>
@@ -174,4 +175,29 @@ TEST(SizeField, GradationHoldsOnEveryEdgeOfARandomGraph)
   // The smallest size is a fixed point.
   const auto m = std::min_element(original.begin(), original.end()) - original.begin();
   EXPECT_EQ(h[m], original[m]);
+}
+
+TEST(BoundarySizeFloor, FallsAtItsSlopeFromEachFace)
+{
+  // Two faces in z = 0: a large one (size 2, base 0.5: reaches 1.5 at slope 1) and a small
+  // one (size 0.4 <= base 0.5: adds nothing).
+  const double points[] = { 0, 0, 0, 4, 0, 0, 0, 4, 0, 10, 10, 0, 11, 10, 0, 10, 11, 0 };
+  const std::vector<std::int32_t> corners = { 0, 1, 2, 3, 4, 5 };
+  const BoundarySizeFloor floor(points, corners, { 2.0, 0.4 }, { 0.5, 0.5 }, 1.0);
+  ASSERT_EQ(floor.faceCount(), 1u);
+  const double onFace[] = { 1, 1, 0 };
+  const double above[] = { 1, 1, 0.75 };
+  const double beside[] = { -0.3, 1, 0.4 }; // nearest point of the face: (0, 1, 0)
+  const double beyond[] = { 1, 1, 1.6 };
+  const double nearSmall[] = { 10.2, 10.2, 0.1 };
+  EXPECT_DOUBLE_EQ(floor.at(onFace), 2.0);
+  EXPECT_DOUBLE_EQ(floor.at(above), 1.25);
+  EXPECT_DOUBLE_EQ(floor.at(beside), 2.0 - 0.5);
+  EXPECT_EQ(floor.at(beyond), 0.0);
+  EXPECT_EQ(floor.at(nearSmall), 0.0);
+  // atLeast is returned when the faces cannot beat it.
+  EXPECT_DOUBLE_EQ(floor.at(above, 1.0), 1.25);
+  EXPECT_DOUBLE_EQ(floor.at(above, 1.5), 1.5);
+  // Off: slope <= 0.
+  EXPECT_TRUE(BoundarySizeFloor(points, corners, { 2.0, 0.4 }, { 0.5, 0.5 }, 0.0).empty());
 }

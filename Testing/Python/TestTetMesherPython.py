@@ -120,7 +120,9 @@ used = vtk_to_numpy(sized.GetPointData().GetArray("h"))
 regular_tets = 1.0 / (h ** 3 / (6 * np.sqrt(2)))  # unit cube / volume of the regular tet of edge h
 print(f"cube, h = {h}: {len(tets)} tets ({len(tets) / regular_tets:.2f} x the regular-tet count), "
       f"{100 * band:.1f}% of edges in [0.7, 1.42] h")
-if band < 0.8 or not np.allclose(used, h):
+# The h used is h, raised (by under 1% here) only where the floor next to boundary faces
+# larger than sqrt(2) h (cube.vtp's face diagonals are 2 h) lifts it.
+if band < 0.8 or used.min() != h or used.max() > 1.02 * h:
     failures.append(f"constant size: {100 * band:.1f}% of edges in the band, h used {used.min()}..{used.max()}")
 if not 0.8 < len(tets) / regular_tets < 1.5:
     failures.append(f"constant size: {len(tets)} tets, far from the regular-tet count {regular_tets:.0f}")

@@ -1,0 +1,174 @@
+#include "BoundarySizeFloor.h"
+
+#include "TriangleDistance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace tetmesher
+{
+
+namespace
+{
+// A face whose reach spans more cells than this (a face far larger than the median reach) is
+// read by every query instead, so that neither building nor querying depends on its extent.
+constexpr double kMaxCellsPerFace = 512;
+} // namespace
+
+BoundarySizeFloor::BoundarySizeFloor(const double* points,
+  const std::vector<std::int32_t>& faceCorners,
+  const std::vector<double>& faceSize,
+  const std::vector<double>& faceBase,
+  double slope)
+  : slope_(slope)
+{
+  if (!(slope > 0) || !std::isfinite(slope))
+    return;
+  std::vector<double> reaches;
+  for (std::size_t id = 0; id < faceSize.size(); ++id)
+  {
+    const double s = faceSize[id], base = faceBase[id];
+    if (!(s > base) || !std::isfinite(s) || !(base > 0))
+      continue;
+    Face f;
+    f.size = s;
+    f.reach = (s - base) / slope;
+    for (int k = 0; k < 3; ++k)
+    {
+      const double* x = points + 3 * static_cast<std::size_t>(faceCorners[3 * id + k]);
+      std::copy(x, x + 3, f.corner + 3 * k);
+      for (int a = 0; a < 3; ++a)
+      {
+        f.box[a] = k == 0 ? x[a] : std::min(f.box[a], x[a]);
+        f.box[3 + a] = k == 0 ? x[a] : std::max(f.box[3 + a], x[a]);
+      }
+    }
+    bool finite = true;
+    for (double b : f.box)
+      finite = finite && std::isfinite(b);
+    if (!finite)
+      continue;
+    faces_.push_back(f);
+    reaches.push_back(f.reach);
+  }
+  if (faces_.empty())
+    return;
+  // Cells as wide as the median reach: a face is listed in a few cells per axis.
+  std::nth_element(reaches.begin(), reaches.begin() + reaches.size() / 2, reaches.end());
+  cell_ = reaches[reaches.size() / 2];
+  for (int a = 0; a < 3; ++a)
+  {
+    origin_[a] = std::numeric_limits<double>::max();
+    for (const Face& f : faces_)
+      origin_[a] = std::min(origin_[a], f.box[a] - f.reach);
+  }
+  for (std::size_t id = 0; id < faces_.size(); ++id)
+  {
+    const Face& f = faces_[id];
+    double lo[3], hi[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = f.box[a] - f.reach;
+      hi[a] = f.box[3 + a] + f.reach;
+    }
+    std::int64_t c0[3], c1[3];
+    double count = 1;
+    bool inRange = cellOf(lo, c0) && cellOf(hi, c1);
+    for (int a = 0; a < 3 && inRange; ++a)
+      count *= static_cast<double>(c1[a] - c0[a] + 1);
+    if (!inRange || count > kMaxCellsPerFace)
+    {
+      large_.push_back(static_cast<std::int32_t>(id));
+      continue;
+    }
+    for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
+      for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
+        for (std::int64_t k = c0[2]; k <= c1[2]; ++k)
+        {
+          // The face's floor over the cell is at most its size less the slope times the
+          // distance between the cell and the face's box.
+          const std::int64_t c[3] = { i, j, k };
+          double gap2 = 0;
+          for (int a = 0; a < 3; ++a)
+          {
+            const double cellLo = origin_[a] + static_cast<double>(c[a]) * cell_;
+            const double d = std::max({ cellLo - f.box[3 + a], f.box[a] - (cellLo + cell_), 0.0 });
+            gap2 += d * d;
+          }
+          // Rounding of the cell's corners: the bound is only used to stop early, so it is
+          // widened by a relative 1e-9 rather than proven.
+          const double bound = f.size - slope_ * std::sqrt(gap2) * (1 - 1e-9);
+          if (bound > 0)
+            cells_[key(i, j, k)].push_back({ bound, static_cast<std::int32_t>(id) });
+        }
+  }
+  for (auto& [cellKey, entries] : cells_)
+    std::sort(entries.begin(),
+      entries.end(),
+      [](const Entry& x, const Entry& y)
+      { return x.bound != y.bound ? x.bound > y.bound : x.face < y.face; });
+}
+
+double BoundarySizeFloor::at(const double* p, double atLeast) const
+{
+  double best = std::max(atLeast, 0.0);
+  if (faces_.empty())
+    return best;
+  for (std::int32_t id : large_)
+    consider(faces_[static_cast<std::size_t>(id)], p, best);
+  std::int64_t c[3];
+  if (!cellOf(p, c))
+    return best;
+  const auto it = cells_.find(key(c[0], c[1], c[2]));
+  if (it == cells_.end())
+    return best;
+  for (const Entry& e : it->second)
+  {
+    if (!(e.bound > best))
+      break;
+    consider(faces_[static_cast<std::size_t>(e.face)], p, best);
+  }
+  return best;
+}
+
+void BoundarySizeFloor::consider(const Face& f, const double* p, double& best) const
+{
+  // The distance to the face's box bounds the distance to the face from below.
+  double boxDistance2 = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double d = std::max({ f.box[a] - p[a], p[a] - f.box[3 + a], 0.0 });
+    boxDistance2 += d * d;
+  }
+  if (!(f.size - slope_ * std::sqrt(boxDistance2) > best))
+    return;
+  const double d =
+    std::sqrt(geometry::pointTriangleDistanceSquared(p, f.corner, f.corner + 3, f.corner + 6));
+  // Beyond its reach a face adds nothing (its cone is under its base size there), wherever
+  // the cells happen to list it.
+  const double value = f.size - slope_ * d;
+  if (value > f.size - slope_ * f.reach)
+    best = std::max(best, value);
+}
+
+bool BoundarySizeFloor::cellOf(const double* p, std::int64_t* c) const
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    const double x = std::floor((p[a] - origin_[a]) / cell_);
+    // Keys hold 21 bits per index: beyond that (or NaN) the point is in no cell.
+    if (!(x >= 0 && x < (1 << 20)))
+      return false;
+    c[a] = static_cast<std::int64_t>(x);
+  }
+  return true;
+}
+
+std::uint64_t BoundarySizeFloor::key(std::int64_t i, std::int64_t j, std::int64_t k)
+{
+  return (static_cast<std::uint64_t>(i) << 42) | (static_cast<std::uint64_t>(j) << 21) |
+    static_cast<std::uint64_t>(k);
+}
+
+} // namespace tetmesher
