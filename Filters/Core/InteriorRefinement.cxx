@@ -438,10 +438,11 @@ BoundarySizeFloor makeBoundarySizeFloor(const TetMesh& mesh,
   const std::vector<double>& h,
   const EdgeGraph& graph,
   double gradation,
+  double slopeFactor,
   double maxRatio,
   double matched)
 {
-  if (!(gradation > 1) || !(maxRatio > 1))
+  if (!(gradation > 1) || !(maxRatio > 1) || !(slopeFactor > 0))
     return {};
   const VertexId n = static_cast<VertexId>(h.size());
   std::vector<double> edgeSum(h.size(), 0.0);
@@ -495,7 +496,9 @@ BoundarySizeFloor makeBoundarySizeFloor(const TetMesh& mesh,
     faceSize.push_back(std::min(size - (matched - 1) * base, maxRatio * base));
     faceBase.push_back(base);
   }
-  return BoundarySizeFloor(mesh.coords.data(), corners, faceSize, faceBase, gradation - 1);
+  // A slope of at most the gradation's: limitGradation never lowers what the floor sets.
+  return BoundarySizeFloor(
+    mesh.coords.data(), corners, faceSize, faceBase, std::min(slopeFactor, 1.0) * (gradation - 1));
 }
 
 struct Candidate
@@ -713,8 +716,13 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   // initial vertices, the sizes of their edges; interpolation keeps their wanted sizes, or
   // the boundary mesh's long tets would carry the faces' sizes across the domain.
   const std::vector<double> wanted(h.begin(), h.end());
-  const BoundarySizeFloor sizeFloor = makeBoundarySizeFloor(
-    mesh, h, graph, sizeOptions.gradation, options.maxFloorRatio, options.maxEdgeRatio);
+  const BoundarySizeFloor sizeFloor = makeBoundarySizeFloor(mesh,
+    h,
+    graph,
+    sizeOptions.gradation,
+    options.floorSlope,
+    options.maxFloorRatio,
+    options.maxEdgeRatio);
   // hp raised to the floor at p (clamped by the largest size the user allows).
   auto raiseToFloor = [&](const double* p, double hp)
   {

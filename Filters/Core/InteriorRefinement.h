@@ -48,15 +48,18 @@ struct RefinementOptions
   // (1.47 h) next to the boundary, too long and unsplittable (their midpoints are 0.52 h from
   // the lattice's next layer); at 0.8 h the edge splitting fills the layer.
   double latticeBoundaryDistance = 0.8;
-  // Floor under the sizes next to boundary faces larger than h (BoundarySizeFloor.h), falling
-  // at the gradation's rate (off with the gradation): at a face, the mean length of the
-  // boundary edges at its vertices less (maxEdgeRatio - 1) h, so that a face the field
-  // already matches adds nothing, and at most this many h, so that a face far larger than h
-  // (a cube of 12 triangles at h = 1/20) still gets points of size h inside. Unit cube of
-  // 0.14-edge triangles at h = 0.025..0.05: min dihedral 16.4..28.2 degrees without the floor,
-  // 29..30 with it (6 gives the same quality with fewer points, 3 lets Q min fall to 0.29).
-  // <= 1: off.
+  // Floor under the sizes next to boundary faces larger than h (BoundarySizeFloor.h): at a
+  // face, the mean length of the boundary edges at its vertices less (maxEdgeRatio - 1) h, so
+  // that a face the field already matches adds nothing, and at most maxFloorRatio h, so that a
+  // face far larger than h (a cube of 12 triangles at h = 1/25) still gets points of size h
+  // inside; falling by floorSlope (g - 1) per unit length (off with the gradation). Chosen by
+  // a sweep over 13 runs (cube.vtp at h = 0.025..0.071, a cube of 7x7 alternating quads per
+  // side at 1/14..1/35, torus and icosphere at h/2): without the floor the worst min dihedral
+  // was 16.4 degrees; floorSlope 1 gave Q min down to 0.285, 0.8 gives >= 0.319 and >= 28.3
+  // degrees, 0.6 about the same with fewer points; a cap of 3 gave 21.6 degrees, 6 no better
+  // than 4 with fewer points. maxFloorRatio <= 1 or floorSlope <= 0: off.
   double maxFloorRatio = 4;
+  double floorSlope = 0.8;
   // Bound on the number of rounds (each round splits the edges too long at its start).
   int maxRounds = 200;
   // Refuse (ok = false, before inserting any point) when the estimated memory of the refined

@@ -481,8 +481,8 @@ TEST(InteriorRefinement, TwoRegionsKeepTheirVolumesAndInterface)
 TEST(InteriorRefinement, CoarseBoundaryFineSize)
 {
   // 12 triangles (edges 1 and 1.41), h = 0.04: the boundary stays the 12 triangles, the floor
-  // next to them (maxFloorRatio h = 0.16 at the faces, falling by (g - 1) = 0.5 per unit of
-  // depth) grades the sizes down to h at depth 0.24, and the core is meshed at h.
+  // next to them (maxFloorRatio h = 0.16 at the faces, falling by 0.8 (g - 1) = 0.4 per unit
+  // of depth) grades the sizes down to h at depth 0.3, and the core is meshed at h.
   Case s;
   s.surface = tt::cube(1);
   ASSERT_TRUE(prepare(s));
@@ -490,7 +490,7 @@ TEST(InteriorRefinement, CoarseBoundaryFineSize)
   const double h0 = 0.04;
   std::vector<double> h(8, h0);
   const RefinementOptions options;
-  const double slope = options.size.gradation - 1;
+  const double slope = options.floorSlope * (options.size.gradation - 1);
   const double atFace = options.maxFloorRatio * h0;
   const double reach = (atFace - h0) / slope;
   const double deepFrom = reach + h0;
@@ -581,7 +581,7 @@ TEST(InteriorRefinement, PointsKeepOffFacesLargerThanH)
   const double diagonal = std::sqrt(2.0) / 4;
   const double atFace =
     std::min(0.25 - (options.maxEdgeRatio - 1) * h0, options.maxFloorRatio * h0);
-  const double slope = options.size.gradation - 1;
+  const double slope = options.floorSlope * (options.size.gradation - 1);
   const double splitClearance =
     options.minBoundaryDistance * atFace / (1 + options.minBoundaryDistance * slope);
   double nearest = 1e300;

@@ -69,6 +69,63 @@ TEST(VolumeMesher, CubeWithConstantSizeKeepsTheBoundaryAndFollowsH)
     minQuality(v, v.tets));
 }
 
+// Issue 8's targets on good surface triangles, with the default options: Q min >= 0.3, share
+// of Q < 0.3 under 0.1%, min dihedral >= 20 degrees; at h matching the surface, at h/2, and
+// much finer than the surface (the size floor's regime: cube(7) at h = 1/35, edges 5 h).
+TEST(VolumeMesher, GoodSurfacesReachTheQualityTargets)
+{
+  struct Case
+  {
+    const char* name;
+    Surface surface;
+    double h;
+  };
+  const double ico = 2 * std::sin(0.5 * 1.1071487177940904) / 8; // icosphere(3)'s edge, ~0.138
+  const Case cases[] = {
+    { "cube(7) h=1/7", cube(7), 1.0 / 7 },
+    { "cube(7) h=1/14", cube(7), 1.0 / 14 },
+    { "cube(7) h=1/35", cube(7), 1.0 / 35 },
+    { "icosphere(3) h=edge/2", icosphere(3), ico / 2 },
+    { "torus h=edge/2", torus(1.0, 0.4, 32, 16), 0.1 },
+  };
+  for (const Case& c : cases)
+  {
+    VolumeMeshOptions options;
+    options.inputSizes.assign(static_cast<std::size_t>(c.surface.pointCount()), c.h);
+    VolumeMeshResult v = meshVolume(c.surface.points.data(),
+      c.surface.pointCount(),
+      c.surface.triangles.data(),
+      c.surface.triangleCount(),
+      options);
+    ASSERT_TRUE(v.ok) << c.name << ": " << v.error;
+    std::vector<int> sign(static_cast<std::size_t>(c.surface.triangleCount()), 1);
+    EXPECT_EQ(checkMesh(c.surface, asMesherResult(v, c.surface.pointCount()), sign, 1), "")
+      << c.name;
+    double qMin = 1, dMin = 180;
+    std::size_t below = 0;
+    const std::size_t tets = v.tets.size() / 4;
+    for (std::size_t t = 0; t < tets; ++t)
+    {
+      const double* p[4];
+      for (int i = 0; i < 4; ++i)
+        p[i] = &v.points[3 * static_cast<std::size_t>(v.tets[4 * t + static_cast<std::size_t>(i)])];
+      const TetShape shape = measureTet(p[1], p[0], p[2], p[3]);
+      qMin = std::min(qMin, shape.quality);
+      dMin = std::min(dMin, shape.minDihedral);
+      below += shape.quality < 0.3;
+    }
+    std::printf("[%s] %zu tets, Q min %.3f, min dihedral %.1f deg, %zu below Q 0.3\n",
+      c.name,
+      tets,
+      qMin,
+      dMin,
+      below);
+    EXPECT_GE(qMin, 0.3) << c.name;
+    EXPECT_GE(dMin, 20.0) << c.name;
+    EXPECT_LT(double(below), 1e-3 * double(tets)) << c.name;
+  }
+}
+
 TEST(VolumeMesher, TwoRegionsStayApartAndBoundaryOnlyIsTheBoundaryMesh)
 {
   std::vector<char> shared;
