@@ -45,6 +45,27 @@ bool faceIsConstrained(const TetMesh& mesh, TetId t, int f)
   return n == kNoNeighbor || mesh.isConstrained(faceTet(n), faceIndex(n));
 }
 
+// Calls visit(t, f) once per constrained face (boundary, interfaces): an interface face from
+// the side of its smaller tet id.
+template<typename Visit>
+void forEachConstrainedFace(const TetMesh& mesh, Visit&& visit)
+{
+  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+  {
+    if (mesh.isDeleted(t))
+      continue;
+    for (int f = 0; f < 4; ++f)
+    {
+      if (!faceIsConstrained(mesh, t, f))
+        continue;
+      const FaceRef n = mesh.neighbor(t, f);
+      if (n != kNoNeighbor && faceTet(n) < t)
+        continue; // listed from its other side
+      visit(t, f);
+    }
+  }
+}
+
 bool tetHas(const TetMesh& mesh, TetId t, VertexId v)
 {
   const VertexId* tv = &mesh.tets[4 * static_cast<std::size_t>(t)];
@@ -215,17 +236,9 @@ public:
   {
     for (int k = 0; k < 3; ++k)
       origin_[k] = origin[k];
-    for (TetId t = 0; t < mesh.tetCapacity(); ++t)
-    {
-      if (mesh.isDeleted(t))
-        continue;
-      for (int f = 0; f < 4; ++f)
+    forEachConstrainedFace(mesh,
+      [&](TetId t, int f)
       {
-        if (!faceIsConstrained(mesh, t, f))
-          continue;
-        const FaceRef n = mesh.neighbor(t, f);
-        if (n != kNoNeighbor && faceTet(n) < t)
-          continue; // an interface face, listed from its other side
         const std::int32_t id = static_cast<std::int32_t>(corners_.size() / 3);
         double lo[3], hi[3];
         for (int k = 0; k < 3; ++k)
@@ -243,14 +256,13 @@ public:
         if (cellRange(lo, hi, 0, c0, c1) > kMaxCellsPerFace)
         {
           large_.push_back(id);
-          continue;
+          return;
         }
         for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
           for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
             for (std::int64_t k = c0[2]; k <= c1[2]; ++k)
               cells_[key(i, j, k)].push_back(id);
-      }
-    }
+      });
   }
 
   // Is a constrained face closer to p than limit?
@@ -259,7 +271,7 @@ public:
     auto faceIsNear = [&](std::int32_t id)
     {
       const double r = limit;
-      // Bounding box first: most faces of a cell are farther than r.
+      // Bounding box first: most faces of a cell are farther than the limit.
       const double* box = &boxes_[6 * static_cast<std::size_t>(id)];
       if (p[0] < box[0] - r || p[0] > box[3] + r || p[1] < box[1] - r || p[1] > box[4] + r ||
         p[2] < box[2] - r || p[2] > box[5] + r)
@@ -448,17 +460,9 @@ BoundarySizeFloor makeBoundarySizeFloor(const TetMesh& mesh,
   std::vector<double> edgeSum(h.size(), 0.0);
   std::vector<int> edgeCount(h.size(), 0);
   std::vector<std::int32_t> corners;
-  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
-  {
-    if (mesh.isDeleted(t))
-      continue;
-    for (int f = 0; f < 4; ++f)
+  forEachConstrainedFace(mesh,
+    [&](TetId t, int f)
     {
-      if (!faceIsConstrained(mesh, t, f))
-        continue;
-      const FaceRef other = mesh.neighbor(t, f);
-      if (other != kNoNeighbor && faceTet(other) < t)
-        continue; // an interface face, taken from its other side
       for (int k = 0; k < 3; ++k)
       {
         const VertexId v = mesh.vertex(t, kFaceVertices[f][k]);
@@ -470,8 +474,7 @@ BoundarySizeFloor makeBoundarySizeFloor(const TetMesh& mesh,
         edgeCount[v] += 1;
         edgeCount[w] += 1;
       }
-    }
-  }
+    });
   if (corners.empty())
     return {};
   std::vector<double> surfaceSize(h.size(), std::numeric_limits<double>::max());
