@@ -44,7 +44,17 @@ BoundarySizeFloor::BoundarySizeFloor(const double* points,
         f.box[3 + a] = k == 0 ? x[a] : std::max(f.box[3 + a], x[a]);
       }
     }
-    bool finite = true;
+    const double* a = f.corner;
+    const double u[3] = { a[3] - a[0], a[4] - a[1], a[5] - a[2] };
+    const double v[3] = { a[6] - a[0], a[7] - a[1], a[8] - a[2] };
+    const double n[3] = {
+      u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]
+    };
+    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int k = 0; k < 3; ++k)
+      f.normal[k] = length > 0 && std::isfinite(length) ? n[k] / length : 0.0;
+    f.offset = f.normal[0] * a[0] + f.normal[1] * a[1] + f.normal[2] * a[2];
+    bool finite = std::isfinite(f.offset);
     for (double b : f.box)
       finite = finite && std::isfinite(b);
     if (!finite)
@@ -134,14 +144,18 @@ double BoundarySizeFloor::at(const double* p, double atLeast) const
 
 void BoundarySizeFloor::consider(const Face& f, const double* p, double& best) const
 {
-  // The distance to the face's box bounds the distance to the face from below.
+  // The distances to the face's box and to its plane bound the distance to the face from
+  // below (the plane's less a relative 1e-9 for rounding): most faces stop here.
   double boxDistance2 = 0;
   for (int a = 0; a < 3; ++a)
   {
     const double d = std::max({ f.box[a] - p[a], p[a] - f.box[3 + a], 0.0 });
     boxDistance2 += d * d;
   }
-  if (!(f.size - slope_ * std::sqrt(boxDistance2) > best))
+  const double planeDistance =
+    std::fabs(f.normal[0] * p[0] + f.normal[1] * p[1] + f.normal[2] * p[2] - f.offset);
+  const double lower = std::max(std::sqrt(boxDistance2), planeDistance * (1 - 1e-9));
+  if (!(f.size - slope_ * lower > best))
     return;
   const double d =
     std::sqrt(geometry::pointTriangleDistanceSquared(p, f.corner, f.corner + 3, f.corner + 6));

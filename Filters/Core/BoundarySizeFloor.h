@@ -45,6 +45,8 @@ private:
     double size;      // s_F
     double reach;     // distance at which s_F - slope d falls to the face's base size
     double box[6];
+    double normal[3]; // unit normal (0 for a degenerate face) and its offset n . corner 0
+    double offset;
   };
   bool cellOf(const double* p, std::int64_t* c) const;
   static std::uint64_t key(std::int64_t i, std::int64_t j, std::int64_t k);

@@ -1215,17 +1215,48 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   // outside, across a boundary face of the edge's shell. The domain never changes, so the
   // same point is outside for good: not walked to again in later rounds.
   std::unordered_map<std::uint64_t, std::array<double, 3>> outsideSplits;
+  // The gradation after round 0 starts from the vertices inserted since the last one and
+  // their neighbours: every other edge is an old one, already within the bound (insertion
+  // only adds edges at the new vertex), so the sizes come out the same as from every vertex.
+  VertexId gradedCount = 0;
+  std::vector<VertexId> seeds, seedStamp;
   for (int round = 0; round < options.maxRounds; ++round)
   {
     if (round > 0 || result.latticePoints > 0)
       graph.build(mesh);
     if (sizeOptions.gradation > 1)
+    {
+      const VertexId count = mesh.vertexCount();
+      seeds.clear();
+      if (round > 0)
+      {
+        seedStamp.resize(static_cast<std::size_t>(count), -1);
+        for (VertexId v = gradedCount; v < count; ++v)
+        {
+          seedStamp[v] = v;
+          seeds.push_back(v);
+        }
+        for (VertexId v = gradedCount; v < count; ++v)
+          for (std::int32_t k = graph.offsets[v]; k < graph.offsets[v + 1]; ++k)
+          {
+            const VertexId w = graph.targets[k];
+            if (w < gradedCount && seedStamp[w] != count)
+            {
+              seedStamp[w] = count;
+              seeds.push_back(w);
+            }
+          }
+      }
       limitGradation(mesh.coords.data(),
-        mesh.vertexCount(),
+        count,
         graph.offsets.data(),
         graph.targets.data(),
         sizeOptions.gradation,
-        h.data());
+        h.data(),
+        round > 0 ? seeds.data() : nullptr,
+        static_cast<std::int32_t>(seeds.size()));
+      gradedCount = count;
+    }
     candidates.clear();
     const VertexId nv = mesh.vertexCount();
     for (VertexId a = 0; a < nv; ++a)

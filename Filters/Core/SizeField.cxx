@@ -132,7 +132,9 @@ std::int64_t limitGradation(const double* points,
   const std::int32_t* offsets,
   const std::int32_t* targets,
   double gradation,
-  double* h)
+  double* h,
+  const std::int32_t* seeds,
+  std::int32_t seedCount)
 {
   if (!(gradation > 1) || pointCount <= 0)
     return 0;
@@ -141,9 +143,18 @@ std::int64_t limitGradation(const double* points,
   // its neighbours; ties broken by id, so the result does not depend on the heap.
   using Entry = std::pair<double, std::int32_t>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
-  for (std::int32_t v = 0; v < pointCount; ++v)
-    if (offsets[v + 1] > offsets[v])
-      heap.emplace(h[v], v);
+  if (seeds)
+  {
+    for (std::int32_t i = 0; i < seedCount; ++i)
+      if (offsets[seeds[i] + 1] > offsets[seeds[i]])
+        heap.emplace(h[seeds[i]], seeds[i]);
+  }
+  else
+  {
+    for (std::int32_t v = 0; v < pointCount; ++v)
+      if (offsets[v + 1] > offsets[v])
+        heap.emplace(h[v], v);
+  }
   std::vector<char> lowered(static_cast<std::size_t>(pointCount), 0);
   std::int64_t changed = 0;
   while (!heap.empty())

@@ -49,11 +49,16 @@ double scaleAndClampSize(double h, const SizeFieldOptions& options);
 // targets[offsets[v] .. offsets[v+1])): afterwards h[j] <= h[i] + (g - 1) * |ij| for every
 // edge, with sizes only ever lowered (h_j = min over i of h_i + (g-1) * graph distance).
 // Returns the number of sizes lowered. Does nothing when gradation <= 1.
+// seeds (seedCount of them): when set, only these vertices start the propagation. Valid when
+// every edge without a seed end already satisfies the bound (e.g. seeds = the ends of the
+// edges added since the last call): the result is then the same as from every vertex.
 std::int64_t limitGradation(const double* points,
   std::int32_t pointCount,
   const std::int32_t* offsets,
   const std::int32_t* targets,
   double gradation,
-  double* h);
+  double* h,
+  const std::int32_t* seeds = nullptr,
+  std::int32_t seedCount = 0);
 
 } // namespace tetmesher
