@@ -33,7 +33,9 @@ options:
   --background-array N  that array's name (default h)
   --size-scale S        multiply every size by S
   --min-size A, --max-size B   clamp the size field
-  --gradation G         largest size ratio between neighbours one h apart (default 1.5)
+  --gradation G         largest size ratio between neighbours one h apart (default 1.5);
+                        next to surface triangles larger than h, sizes also fall from
+                        the triangles' own to h at 0.8 of this rate (1 or less: neither)
   --no-optimize         skip quality optimisation
   --passes N            optimisation passes (default 3)
   --quality-target Q    optimise tets below this quality (default 0.35)
