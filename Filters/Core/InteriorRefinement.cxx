@@ -1,5 +1,6 @@
 #include "InteriorRefinement.h"
 
+#include "BoundarySizeCeiling.h"
 #include "BoundarySizeFloor.h"
 #include "Delaunay.h"
 #include "HilbertSort.h"
@@ -441,25 +442,23 @@ struct EdgeGraph
   }
 };
 
-// The floor under the sizes next to boundary faces larger than h (BoundarySizeFloor.h). A
-// face's size at its vertices is the mean length of the constrained edges there, graded like h
-// (a face next to a small feature asks for less); the face takes the smallest of its three,
-// less (matched - 1) times the smallest wanted size h_F at its vertices (a face whose edges
-// the field already accepts adds nothing) and at most maxRatio h_F. Empty when off.
-BoundarySizeFloor makeBoundarySizeFloor(const TetMesh& mesh,
-  const std::vector<double>& h,
-  const EdgeGraph& graph,
-  double gradation,
-  double slopeFactor,
-  double maxRatio,
-  double matched)
+// The constrained faces and, at their vertices, the surface's own size: the mean length of the
+// constrained edges there, graded like h (a vertex next to a small feature gets less). Sizes
+// of vertices on no constrained face are the largest double.
+struct SurfaceSizes
 {
-  if (!(gradation > 1) || !(maxRatio > 1) || !(slopeFactor > 0))
-    return {};
-  const VertexId n = static_cast<VertexId>(h.size());
-  std::vector<double> edgeSum(h.size(), 0.0);
-  std::vector<int> edgeCount(h.size(), 0);
-  std::vector<std::int32_t> corners;
+  std::vector<std::int32_t> corners; // 3 per face
+  std::vector<double> vertexSize;
+};
+
+SurfaceSizes surfaceSizes(const TetMesh& mesh,
+  VertexId vertexCount,
+  const EdgeGraph& graph,
+  double gradation)
+{
+  SurfaceSizes out;
+  std::vector<double> edgeSum(static_cast<std::size_t>(vertexCount), 0.0);
+  std::vector<int> edgeCount(static_cast<std::size_t>(vertexCount), 0);
   forEachConstrainedFace(mesh,
     [&](TetId t, int f)
     {
@@ -467,7 +466,7 @@ BoundarySizeFloor makeBoundarySizeFloor(const TetMesh& mesh,
       {
         const VertexId v = mesh.vertex(t, kFaceVertices[f][k]);
         const VertexId w = mesh.vertex(t, kFaceVertices[f][(k + 1) % 3]);
-        corners.push_back(v);
+        out.corners.push_back(v);
         const double l = distance(mesh.point(v), mesh.point(w));
         edgeSum[v] += l;
         edgeSum[w] += l;
@@ -475,33 +474,72 @@ BoundarySizeFloor makeBoundarySizeFloor(const TetMesh& mesh,
         edgeCount[w] += 1;
       }
     });
-  if (corners.empty())
-    return {};
-  std::vector<double> surfaceSize(h.size(), std::numeric_limits<double>::max());
-  for (VertexId v = 0; v < n; ++v)
+  out.vertexSize.assign(static_cast<std::size_t>(vertexCount), std::numeric_limits<double>::max());
+  for (VertexId v = 0; v < vertexCount; ++v)
     if (edgeCount[v] > 0)
-      surfaceSize[v] = edgeSum[v] / edgeCount[v];
+      out.vertexSize[v] = edgeSum[v] / edgeCount[v];
   limitGradation(mesh.coords.data(),
-    n,
+    vertexCount,
     graph.offsets.data(),
     graph.targets.data(),
     gradation,
-    surfaceSize.data());
+    out.vertexSize.data());
+  return out;
+}
+
+// The floor under the sizes next to boundary faces larger than h (BoundarySizeFloor.h): a
+// face's size is the smallest surface size at its vertices, less (matched - 1) times the
+// smallest wanted size h_F there (a face whose edges the field already accepts adds nothing),
+// at most maxRatio h_F. Empty when off.
+BoundarySizeFloor makeBoundarySizeFloor(const TetMesh& mesh,
+  const SurfaceSizes& surface,
+  const std::vector<double>& h,
+  double gradation,
+  double slopeFactor,
+  double maxRatio,
+  double matched)
+{
+  if (!(gradation > 1) || !(maxRatio > 1) || !(slopeFactor > 0) || surface.corners.empty())
+    return {};
   std::vector<double> faceSize, faceBase;
-  for (std::size_t id = 0; id < corners.size() / 3; ++id)
+  for (std::size_t id = 0; id < surface.corners.size() / 3; ++id)
   {
     double size = std::numeric_limits<double>::max(), base = size;
     for (int k = 0; k < 3; ++k)
     {
-      size = std::min(size, surfaceSize[corners[3 * id + k]]);
-      base = std::min(base, h[corners[3 * id + k]]);
+      size = std::min(size, surface.vertexSize[surface.corners[3 * id + k]]);
+      base = std::min(base, h[surface.corners[3 * id + k]]);
     }
     faceSize.push_back(std::min(size - (matched - 1) * base, maxRatio * base));
     faceBase.push_back(base);
   }
   // A slope of at most the gradation's: limitGradation never lowers what the floor sets.
-  return BoundarySizeFloor(
-    mesh.coords.data(), corners, faceSize, faceBase, std::min(slopeFactor, 1.0) * (gradation - 1));
+  return BoundarySizeFloor(mesh.coords.data(),
+    surface.corners,
+    faceSize,
+    faceBase,
+    std::min(slopeFactor, 1.0) * (gradation - 1));
+}
+
+// The ceiling over the sizes next to boundary faces smaller than h (BoundarySizeCeiling.h): a
+// face's size is `ratio` times the smallest surface size at its vertices, growing at the
+// gradation's rate. Empty when off.
+BoundarySizeCeiling makeBoundarySizeCeiling(const TetMesh& mesh,
+  const SurfaceSizes& surface,
+  double gradation,
+  double ratio)
+{
+  if (!(gradation > 1) || !(ratio > 0) || surface.corners.empty())
+    return {};
+  std::vector<double> faceSize;
+  for (std::size_t id = 0; id < surface.corners.size() / 3; ++id)
+  {
+    double size = std::numeric_limits<double>::max();
+    for (int k = 0; k < 3; ++k)
+      size = std::min(size, surface.vertexSize[surface.corners[3 * id + k]]);
+    faceSize.push_back(ratio * size);
+  }
+  return BoundarySizeCeiling(mesh.coords.data(), surface.corners, faceSize, gradation - 1);
 }
 
 struct Candidate
@@ -688,7 +726,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     }
   const double budgetDouble = options.maxPoints >= 0
     ? static_cast<double>(options.maxPoints)
-    : std::min(8.0 * result.estimatedPoints + 10000.0, 1.0e9);
+    : std::min(8.0 * result.estimatedPoints + 16.0 * initialCount + 10000.0, 1.0e9);
   const std::int64_t budget = static_cast<std::int64_t>(budgetDouble);
   if (initialCount == 0 || mesh.liveTetCount() == 0)
     return finish(true, "");
@@ -712,32 +750,41 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     adviseHugePages(h);
   }
 
-  double minH = std::numeric_limits<double>::max();
-  for (double value : h)
-    minH = std::min(minH, value);
-  // The floor next to faces larger than h (BoundarySizeFloor.h) raises the sizes of the
-  // initial vertices, the sizes of their edges; interpolation keeps their wanted sizes, or
-  // the boundary mesh's long tets would carry the faces' sizes across the domain.
+  // The floor next to faces larger than h (BoundarySizeFloor.h) and the ceiling next to faces
+  // smaller than h (BoundarySizeCeiling.h) bound the sizes of the initial vertices, the sizes
+  // of their edges; interpolation keeps their wanted sizes, or the boundary mesh's long tets
+  // would carry the faces' sizes across the domain. Every new point's size is bounded too.
   const std::vector<double> wanted(h.begin(), h.end());
+  const SurfaceSizes surface = surfaceSizes(mesh, initialCount, graph, sizeOptions.gradation);
   const BoundarySizeFloor sizeFloor = makeBoundarySizeFloor(mesh,
+    surface,
     h,
-    graph,
     sizeOptions.gradation,
     options.floorSlope,
     options.maxFloorRatio,
     options.maxEdgeRatio);
-  // hp raised to the floor at p (clamped by the largest size the user allows).
-  auto raiseToFloor = [&](const double* p, double hp)
+  const BoundarySizeCeiling sizeCeiling =
+    makeBoundarySizeCeiling(mesh, surface, sizeOptions.gradation, options.ceilingRatio);
+  // hp raised to the floor at p and lowered to the ceiling, within the user's clamps (the
+  // ceiling wins where both apply: the smaller feature decides).
+  auto boundToSurface = [&](const double* p, double hp)
   {
-    if (sizeFloor.empty())
-      return hp;
-    double f = sizeFloor.at(p, hp);
-    if (sizeOptions.maxSize > 0)
-      f = std::min(f, sizeOptions.maxSize);
-    return std::max(hp, f);
+    if (!sizeFloor.empty())
+    {
+      double f = sizeFloor.at(p, hp);
+      if (sizeOptions.maxSize > 0)
+        f = std::min(f, sizeOptions.maxSize);
+      hp = std::max(hp, f);
+    }
+    if (!sizeCeiling.empty())
+      hp = std::max(sizeCeiling.at(p, hp), std::min(hp, sizeOptions.minSize));
+    return hp;
   };
   for (VertexId v = 0; v < initialCount; ++v)
-    h[v] = raiseToFloor(mesh.point(v), h[v]);
+    h[v] = boundToSurface(mesh.point(v), h[v]);
+  double minH = std::numeric_limits<double>::max();
+  for (VertexId v = 0; v < initialCount; ++v)
+    minH = std::min({ minH, h[v], wanted[v] });
   auto interpolationSize = [&](VertexId v) { return v < initialCount ? wanted[v] : h[v]; };
   const bool checkProximity = options.minPointDistance > 0;
   ProximityGrid grid(minH, std::max(options.minPointDistance, 1e-3), lo);
@@ -828,7 +875,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     {
       hp = background(p);
       hp = hp > 0 && std::isfinite(hp) ? scaleAndClampSize(hp, sizeOptions) : fallback;
-      return raiseToFloor(p, hp);
+      return boundToSurface(p, hp);
     }
     const double* corners[4];
     double hc[4];
@@ -843,7 +890,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       hp = std::max(hp, sizeOptions.minSize);
     if (sizeOptions.maxSize > 0)
       hp = std::min(hp, sizeOptions.maxSize);
-    return raiseToFloor(p, hp);
+    return boundToSurface(p, hp);
   };
   // Inserts p (in `container`, of region r) with size hp unless a vertex or a constrained
   // face is too close or the kernel refuses it. Returns a tet of the new vertex, or -1.
@@ -977,8 +1024,9 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       {
         c[i] = mesh.point(mesh.vertex(t, i));
         hc[i] = wanted[mesh.vertex(t, i)];
-        hlo = std::min(hlo, hc[i]);
-        hhi = std::max(hhi, h[mesh.vertex(t, i)]); // the floor raised it near large faces
+        // h, unlike hc, went through the floor and the ceiling.
+        hlo = std::min({ hlo, hc[i], h[mesh.vertex(t, i)] });
+        hhi = std::max({ hhi, hc[i], h[mesh.vertex(t, i)] });
         for (int k = 0; k < 3; ++k)
         {
           bmin[k] = i == 0 ? c[i][k] : std::min(bmin[k], c[i][k]);
@@ -1124,7 +1172,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
                   hp = background(p);
                   if (!(hp > 0) || !std::isfinite(hp))
                     continue;
-                  hp = raiseToFloor(p, scaleAndClampSize(hp, sizeOptions));
+                  hp = boundToSurface(p, scaleAndClampSize(hp, sizeOptions));
                   // One lattice only with a background field: where it matches.
                   if (std::fabs(std::log(hp / a * options.latticeSpacing)) > 0.5 * logRatio)
                     continue;
@@ -1136,7 +1184,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
                     hp = std::max(hp, sizeOptions.minSize);
                   if (sizeOptions.maxSize > 0)
                     hp = std::min(hp, sizeOptions.maxSize);
-                  hp = raiseToFloor(p, hp);
+                  hp = boundToSurface(p, hp);
                   if (levelOfSize(hp) != level)
                     continue;
                 }

@@ -1,7 +1,9 @@
 // Size field: boundary edge sizes, the paper's power-mean interpolation, scaling and clamping,
 // and the gradation limit; the floor under the sizes next to large boundary faces.
+#include "BoundarySizeCeiling.h"
 #include "BoundarySizeFloor.h"
 #include "SizeField.h"
+#include "TriangleDistance.h"
 
 #include <gtest/gtest.h>
 
@@ -200,4 +202,52 @@ TEST(BoundarySizeFloor, FallsAtItsSlopeFromEachFace)
   EXPECT_DOUBLE_EQ(floor.at(above, 1.5), 1.5);
   // Off: slope <= 0.
   EXPECT_TRUE(BoundarySizeFloor(points, corners, { 2.0, 0.4 }, { 0.5, 0.5 }, 0.0).empty());
+}
+
+TEST(BoundarySizeCeiling, IsTheSmallestConeOverTheFaces)
+{
+  // 400 random triangles of random sizes in the unit cube; the hierarchy's answer equals the
+  // brute-force minimum of s_F + slope d(p, F) (and atMost where that is smaller) at 2000
+  // random points inside and around.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0, 1), around(-0.5, 1.5), size(0.01, 0.2);
+  std::vector<double> points;
+  std::vector<std::int32_t> corners;
+  std::vector<double> sizes;
+  for (int f = 0; f < 400; ++f)
+  {
+    const double c[3] = { unit(rng), unit(rng), unit(rng) };
+    for (int k = 0; k < 3; ++k)
+    {
+      for (int a = 0; a < 3; ++a)
+        points.push_back(c[a] + 0.1 * (unit(rng) - 0.5));
+      corners.push_back(static_cast<std::int32_t>(3 * f + k));
+    }
+    sizes.push_back(size(rng));
+  }
+  sizes[5] = 0; // left out: not positive
+  const double slope = 0.5;
+  const BoundarySizeCeiling ceiling(points.data(), corners, sizes, slope);
+  ASSERT_FALSE(ceiling.empty());
+  int capped = 0;
+  for (int i = 0; i < 2000; ++i)
+  {
+    const double p[3] = { around(rng), around(rng), around(rng) };
+    double expected = 1e300;
+    for (int f = 0; f < 400; ++f)
+    {
+      if (f == 5)
+        continue;
+      const double* x = &points[9 * static_cast<std::size_t>(f)];
+      const double d = std::sqrt(geometry::pointTriangleDistanceSquared(p, x, x + 3, x + 6));
+      expected = std::min(expected, sizes[static_cast<std::size_t>(f)] + slope * d);
+    }
+    ASSERT_EQ(ceiling.at(p, 1e300), expected) << i;
+    const double atMost = 0.15;
+    capped += expected >= atMost;
+    ASSERT_EQ(ceiling.at(p, atMost), std::min(expected, atMost)) << i;
+  }
+  EXPECT_GT(capped, 100); // both sides of atMost occur
+  EXPECT_LT(capped, 1900);
+  EXPECT_TRUE(BoundarySizeCeiling(points.data(), corners, sizes, 0.0).empty());
 }

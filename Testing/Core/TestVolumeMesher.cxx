@@ -70,8 +70,9 @@ TEST(VolumeMesher, CubeWithConstantSizeKeepsTheBoundaryAndFollowsH)
 }
 
 // Issue 8's targets on good surface triangles, with the default options: Q min >= 0.3, share
-// of Q < 0.3 under 0.1%, min dihedral >= 20 degrees; at h matching the surface, at h/2, and
-// much finer than the surface (the size floor's regime: cube(7) at h = 1/35, edges 5 h).
+// of Q < 0.3 under 0.1%, min dihedral >= 20 degrees; at h matching the surface, at h/2, much
+// finer than the surface (the size floor's regime: cube(7) at h = 1/35, edges 5 h) and much
+// coarser (the size ceiling's: edges h/3.5 to h/4).
 TEST(VolumeMesher, GoodSurfacesReachTheQualityTargets)
 {
   struct Case
@@ -87,6 +88,10 @@ TEST(VolumeMesher, GoodSurfacesReachTheQualityTargets)
     { "cube(7) h=1/35", cube(7), 1.0 / 35 },
     { "icosphere(3) h=edge/2", icosphere(3), ico / 2 },
     { "torus h=edge/2", torus(1.0, 0.4, 32, 16), 0.1 },
+    // h far above the surface's edges: the ceiling grades the sizes up from the faces.
+    { "cube(7) h=0.5", cube(7), 0.5 },
+    { "icosphere(3) h=4 edges", icosphere(3), 4 * ico },
+    { "torus h=0.5", torus(1.0, 0.4, 32, 16), 0.5 },
   };
   for (const Case& c : cases)
   {

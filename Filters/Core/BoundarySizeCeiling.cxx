@@ -1,0 +1,155 @@
+#include "BoundarySizeCeiling.h"
+
+#include "TriangleDistance.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tetmesher
+{
+
+namespace
+{
+constexpr std::int32_t kLeafFaces = 4;
+
+double boxDistance(const double* box, const double* p)
+{
+  double d2 = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double d = std::max({ box[a] - p[a], p[a] - box[3 + a], 0.0 });
+    d2 += d * d;
+  }
+  return std::sqrt(d2);
+}
+} // namespace
+
+BoundarySizeCeiling::BoundarySizeCeiling(const double* points,
+  const std::vector<std::int32_t>& faceCorners,
+  const std::vector<double>& faceSize,
+  double slope)
+  : slope_(slope)
+{
+  if (!(slope > 0) || !std::isfinite(slope))
+    return;
+  for (std::size_t id = 0; id < faceSize.size(); ++id)
+  {
+    Face f;
+    f.size = faceSize[id];
+    if (!(f.size > 0) || !std::isfinite(f.size))
+      continue;
+    bool finite = true;
+    for (int k = 0; k < 3; ++k)
+    {
+      const double* x = points + 3 * static_cast<std::size_t>(faceCorners[3 * id + k]);
+      std::copy(x, x + 3, f.corner + 3 * k);
+      for (int a = 0; a < 3; ++a)
+      {
+        finite = finite && std::isfinite(x[a]);
+        f.box[a] = k == 0 ? x[a] : std::min(f.box[a], x[a]);
+        f.box[3 + a] = k == 0 ? x[a] : std::max(f.box[3 + a], x[a]);
+      }
+    }
+    if (finite)
+      faces_.push_back(f);
+  }
+  if (!faces_.empty())
+  {
+    nodes_.reserve(2 * faces_.size() / kLeafFaces + 2);
+    build(0, static_cast<std::int32_t>(faces_.size()));
+  }
+}
+
+// Median split on the longest axis of the faces' centres; the order is a function of the
+// input alone (ties by position in the array), so the tree is deterministic.
+std::int32_t BoundarySizeCeiling::build(std::int32_t first, std::int32_t count)
+{
+  const std::int32_t id = static_cast<std::int32_t>(nodes_.size());
+  nodes_.push_back({});
+  Node node;
+  node.minSize = faces_[static_cast<std::size_t>(first)].size;
+  std::copy(faces_[static_cast<std::size_t>(first)].box,
+    faces_[static_cast<std::size_t>(first)].box + 6,
+    node.box);
+  double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
+  for (std::int32_t i = first; i < first + count; ++i)
+  {
+    const Face& f = faces_[static_cast<std::size_t>(i)];
+    node.minSize = std::min(node.minSize, f.size);
+    for (int a = 0; a < 3; ++a)
+    {
+      node.box[a] = std::min(node.box[a], f.box[a]);
+      node.box[3 + a] = std::max(node.box[3 + a], f.box[3 + a]);
+      const double c = f.box[a] + f.box[3 + a];
+      lo[a] = i == first ? c : std::min(lo[a], c);
+      hi[a] = i == first ? c : std::max(hi[a], c);
+    }
+  }
+  node.first = first;
+  node.count = count;
+  node.left = node.right = -1;
+  if (count > kLeafFaces)
+  {
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+      if (hi[a] - lo[a] > hi[axis] - lo[axis])
+        axis = a;
+    const std::int32_t half = count / 2;
+    auto begin = faces_.begin() + first;
+    std::nth_element(begin,
+      begin + half,
+      begin + count,
+      [axis](const Face& x, const Face& y)
+      {
+        const double cx = x.box[axis] + x.box[3 + axis], cy = y.box[axis] + y.box[3 + axis];
+        if (cx != cy)
+          return cx < cy;
+        return std::lexicographical_compare(x.corner, x.corner + 9, y.corner, y.corner + 9);
+      });
+    node.count = 0;
+    node.left = build(first, half);
+    node.right = build(first + half, count - half);
+  }
+  nodes_[static_cast<std::size_t>(id)] = node;
+  return id;
+}
+
+double BoundarySizeCeiling::at(const double* p, double atMost) const
+{
+  double best = atMost;
+  if (nodes_.empty())
+    return best;
+  std::int32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0)
+  {
+    const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
+    if (!(node.minSize + slope_ * boxDistance(node.box, p) < best))
+      continue;
+    if (node.count > 0)
+    {
+      for (std::int32_t i = node.first; i < node.first + node.count; ++i)
+      {
+        const Face& f = faces_[static_cast<std::size_t>(i)];
+        if (!(f.size + slope_ * boxDistance(f.box, p) < best))
+          continue;
+        const double d = std::sqrt(
+          geometry::pointTriangleDistanceSquared(p, f.corner, f.corner + 3, f.corner + 6));
+        best = std::min(best, f.size + slope_ * d);
+      }
+      continue;
+    }
+    // The nearer child last on the stack, so it is visited first and tightens the bound.
+    const Node& l = nodes_[static_cast<std::size_t>(node.left)];
+    const Node& r = nodes_[static_cast<std::size_t>(node.right)];
+    const bool leftNearer = boxDistance(l.box, p) <= boxDistance(r.box, p);
+    if (top + 2 > 128)
+      continue; // deeper than any balanced tree of 2^31 faces; cannot happen
+    stack[top++] = leftNearer ? node.right : node.left;
+    stack[top++] = leftNearer ? node.left : node.right;
+  }
+  return best;
+}
+
+} // namespace tetmesher

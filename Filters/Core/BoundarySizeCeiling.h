@@ -1,0 +1,55 @@
+// A ceiling over the size field next to boundary faces smaller than the wanted size. The
+// boundary is never coarsened, so a face of edge s needs tets of about s on it; when h is much
+// larger (fandisk, edges 0.02, meshed at h = 0.1), points of size h next to it make flat or
+// needle tets (45% of fandisk's tets below Q 0.3 at h = 0.1). The ceiling grades the sizes up
+// from the faces' own at the gradation's rate:
+//   ceiling(p) = min over faces F of  s_F + slope * d(p, F),
+// the mirror of BoundarySizeFloor. Faces sit in a bounding-volume hierarchy whose nodes keep
+// their smallest s_F, so a query visits the few faces that can set the minimum.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace tetmesher
+{
+
+class BoundarySizeCeiling
+{
+public:
+  BoundarySizeCeiling() = default;
+
+  // Faces are triples of indices into `points` (xyz per point; copied). faceSize: s_F per face
+  // (faces with a size that is not positive and finite are left out). slope > 0.
+  BoundarySizeCeiling(const double* points,
+    const std::vector<std::int32_t>& faceCorners,
+    const std::vector<double>& faceSize,
+    double slope);
+
+  // min(atMost, ceiling(p)): faces that cannot go below atMost are not measured.
+  double at(const double* p, double atMost) const;
+
+  bool empty() const { return faces_.empty(); }
+
+private:
+  struct Face
+  {
+    double corner[9]; // xyz of its 3 corners
+    double size;
+    double box[6];
+  };
+  struct Node
+  {
+    double box[6];
+    double minSize;
+    std::int32_t first, count; // faces [first, first + count) when a leaf (count > 0)
+    std::int32_t left, right;  // children when an inner node
+  };
+  std::int32_t build(std::int32_t first, std::int32_t count);
+
+  double slope_ = 1;
+  std::vector<Face> faces_;
+  std::vector<Node> nodes_;
+};
+
+} // namespace tetmesher
