@@ -35,7 +35,8 @@ options:
   --min-size A, --max-size B   clamp the size field
   --gradation G         largest size ratio between neighbours one h apart (default 1.5);
                         next to surface triangles larger than h, sizes also fall from
-                        the triangles' own to h at 0.8 of this rate (1 or less: neither)
+                        the triangles' own to h at 0.8 of this rate, and next to smaller
+                        ones grow from 1.2 times theirs at this rate (1 or less: neither)
   --no-optimize         skip quality optimisation
   --passes N            optimisation passes (default 3)
   --quality-target Q    optimise tets below this quality (default 0.35)

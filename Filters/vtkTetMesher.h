@@ -112,8 +112,10 @@ public:
   /**
    * Largest ratio of the sizes of neighbours one h apart (like Gmsh's and MMG's hgrad);
    * default 1.5; 1 or less: no limit. Next to input triangles larger than h, the sizes also
-   * fall from the triangles' own to h, at 0.8 of this rate, so that the tets on them are not
-   * flat (the output point array `h` is the size used); 1 or less turns that off too.
+   * fall from the triangles' own to h, at 0.8 of this rate, and next to triangles smaller than
+   * h they grow from 1.2 times the triangles' own at this rate, so that the tets on them are
+   * neither flat nor needles (the output point array `h` is the size used); 1 or less turns
+   * that off too.
    */
   vtkSetClampMacro(Gradation, double, 0.0, 100.0);
   vtkGetMacro(Gradation, double);
