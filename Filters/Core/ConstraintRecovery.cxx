@@ -385,8 +385,19 @@ private:
     std::vector<TetId> shell; // edge removal: the shell and ring it was computed for
     std::vector<VertexId> ring;
   };
-  bool cachedFlip23(TetId t, int f, const FlipCost& cost, FlipCandidate& out);
-  bool cachedEdgeRemoval(TetId t, VertexId p, VertexId q, const FlipCost& cost, FlipCandidate& out);
+  // With gainOnly, a move whose region the item does not meet (old cost 0, so no gain) is
+  // answered false without building it: the flip search then only looks for strict gains.
+  bool cachedFlip23(TetId t,
+    int f,
+    const FlipCost& cost,
+    FlipCandidate& out,
+    bool gainOnly = false);
+  bool cachedEdgeRemoval(TetId t,
+    VertexId p,
+    VertexId q,
+    const FlipCost& cost,
+    FlipCandidate& out,
+    bool gainOnly = false);
   // Inserts the point (true) and repairs the vertex->tet index.
   bool insertSteiner(const double* c, TetId tet);
 
@@ -435,7 +446,7 @@ private:
                         } };
 };
 
-bool Recovery::cachedFlip23(TetId t, int f, const FlipCost& cost, FlipCandidate& out)
+bool Recovery::cachedFlip23(TetId t, int f, const FlipCost& cost, FlipCandidate& out, bool gainOnly)
 {
   // The candidate depends on t's vertices, the neighbour across f and its apex.
   CachedCandidate& entry = flip23Cache_[makeFaceRef(t, f)];
@@ -446,6 +457,16 @@ bool Recovery::cachedFlip23(TetId t, int f, const FlipCost& cost, FlipCandidate&
   if (entry.clock == 0 || entry.shell.size() != 1 || entry.shell[0] != n ||
     entry.ring != ringScratch_)
   {
+    if (gainOnly && n != kNoNeighbor)
+    {
+      // The old cost of the flip: the two tets and the face between them.
+      const int* fv = kFaceVertices[f];
+      const VertexId* v = &ringScratch_[0];
+      if ((!cost.tet ||
+            (cost.tet(tetVertices(t)) == 0 && cost.tet(tetVertices(faceTet(n))) == 0)) &&
+        (!cost.face || cost.face(v[fv[0]], v[fv[1]], v[fv[2]]) == 0))
+        return false;
+    }
     entry.clock = 1;
     entry.shell.assign(1, n);
     entry.ring = ringScratch_;
@@ -460,7 +481,8 @@ bool Recovery::cachedEdgeRemoval(TetId t,
   VertexId p,
   VertexId q,
   const FlipCost& cost,
-  FlipCandidate& out)
+  FlipCandidate& out,
+  bool gainOnly)
 {
   // The candidate depends only on the shell walked from t (its tet ids, which determine the
   // old tets, and its ring, which determines every tet priced): the same walk, the same
@@ -469,6 +491,16 @@ bool Recovery::cachedEdgeRemoval(TetId t,
   bool closed = edgeShell(mesh_, t, p, q, shellScratch_, ringScratch_);
   if (entry.clock == 0 || shellScratch_ != entry.shell || ringScratch_ != entry.ring)
   {
+    if (gainOnly && closed)
+    {
+      // The old cost of the removal: the edge, its faces and the tets of its shell.
+      bool zero = !cost.edge || cost.edge(p, q) == 0;
+      for (std::size_t k = 0; k < ringScratch_.size() && zero; ++k)
+        zero = (!cost.face || cost.face(p, q, ringScratch_[k]) == 0) &&
+          (!cost.tet || cost.tet(tetVertices(shellScratch_[k])) == 0);
+      if (zero)
+        return false;
+    }
     entry.clock = 1;
     entry.shell = shellScratch_;
     entry.ring = ringScratch_;
@@ -782,7 +814,7 @@ int Recovery::findMoves(VertexId seed,
       const int* fv = kFaceVertices[f];
       if (!triedFaces.insert(sortedTriangle(v[fv[0]], v[fv[1]], v[fv[2]])))
         continue;
-      if (cachedFlip23(t, f, cost, candidate))
+      if (cachedFlip23(t, f, cost, candidate, !neutral))
         consider(true);
     }
     for (int i = 0; i < 4; ++i)
@@ -793,7 +825,7 @@ int Recovery::findMoves(VertexId seed,
         if (inputEdges_.count(key) ||
           !triedEdges.insert({ std::min(v[i], v[j]), std::max(v[i], v[j]) }))
           continue;
-        if (cachedEdgeRemoval(t, v[i], v[j], cost, candidate))
+        if (cachedEdgeRemoval(t, v[i], v[j], cost, candidate, !neutral))
           consider(false);
       }
     }
@@ -875,8 +907,7 @@ bool Recovery::flipUntil(VertexId seed,
       return false;
     FlipCandidate best;
     bool bestIsFlip23 = false;
-    neutral.clear();
-    if (findMoves(seed, cost, pipe, best, bestIsFlip23, &neutral) > 0)
+    if (findMoves(seed, cost, pipe, best, bestIsFlip23, nullptr) > 0)
     {
       replace(best.oldTets, best.newTets);
       if (bestIsFlip23)
@@ -892,12 +923,13 @@ bool Recovery::flipUntil(VertexId seed,
     if (removeCrossingDeep(pipe, cost, done, moved))
       continue;
     if (moved)
-    {
-      // The failed attempts were undone, but the tets came back under other ids.
-      neutral.clear();
-      findMoves(seed, cost, pipe, best, bestIsFlip23, &neutral);
-    }
-    if (shrinkCrossingShell(pipe, cost) || lookahead(seed, cost, neutral))
+      collectPipe(seed, cost, pipe); // the attempts were undone, the tets came back renamed
+    if (shrinkCrossingShell(pipe, cost))
+      continue;
+    // The cost-neutral moves, which the search for gains skipped.
+    neutral.clear();
+    findMoves(seed, cost, pipe, best, bestIsFlip23, &neutral);
+    if (lookahead(seed, cost, neutral))
       continue;
     return false;
   }
