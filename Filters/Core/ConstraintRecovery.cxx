@@ -19,7 +19,6 @@
 #include <set>
 #include <sstream>
 #include <unordered_map>
-#include <unordered_set>
 
 namespace tetmesher
 {
@@ -270,11 +269,14 @@ public:
   {
     index_.rebuild(mesh_);
     std::map<std::uint64_t, std::size_t> edgeIndex;
+    // The edges are sorted (a < b): those of input point a start at edgeStart_[a].
+    edgeStart_.assign(static_cast<std::size_t>(surface_.pointCount) + 1, 0);
+    for (const auto& edge : surface_.edges)
+      ++edgeStart_[edge[0] + 1];
+    for (std::size_t v = 0; v + 1 < edgeStart_.size(); ++v)
+      edgeStart_[v + 1] += edgeStart_[v];
     for (std::size_t e = 0; e < surface_.edges.size(); ++e)
-    {
-      inputEdges_.insert(edgeKey(surface_.edges[e][0], surface_.edges[e][1]));
       edgeIndex.emplace(edgeKey(surface_.edges[e][0], surface_.edges[e][1]), e);
-    }
     edgeTriangles_.resize(surface_.edges.size());
     for (const auto& t : surface_.triangles)
     {
@@ -297,6 +299,19 @@ public:
 
 private:
   const double* point(VertexId v) const { return mesh_.point(v); }
+  bool isInputEdge(VertexId a, VertexId b) const
+  {
+    if (a > b)
+      std::swap(a, b);
+    if (a < 0 || b >= surface_.pointCount)
+      return false; // Steiner points and the Delaunay box are on no input edge
+    for (std::int32_t e = edgeStart_[a]; e < edgeStart_[a + 1]; ++e)
+    {
+      if (surface_.edges[e][1] == b)
+        return true;
+    }
+    return false;
+  }
   TetVertices tetVertices(TetId t) const
   {
     return { mesh_.vertex(t, 0), mesh_.vertex(t, 1), mesh_.vertex(t, 2), mesh_.vertex(t, 3) };
@@ -405,7 +420,7 @@ private:
   const SurfaceInput& surface_;
   RecoveryOptions options_;
   VertexTetIndex index_;
-  std::unordered_set<std::uint64_t> inputEdges_;
+  std::vector<std::int32_t> edgeStart_; // input edges by their first point (isInputEdge)
   std::vector<std::array<double, 6>> triangleBoxes_;
   std::unique_ptr<InsertionWorkspace, WorkspaceDeleter> workspace_{ createInsertionWorkspace() };
   RecoveryResult result_;
@@ -442,7 +457,7 @@ private:
   std::unordered_map<std::uint64_t, Failure> deepFailures_;
   // Input edges are never removed (their faces may not be recovered yet).
   DeepEdgeRemoval deep_{ mesh_, index_, [this](VertexId a, VertexId b) {
-                          return inputEdges_.count(edgeKey(a, b)) > 0;
+                          return isInputEdge(a, b);
                         } };
 };
 
@@ -821,8 +836,7 @@ int Recovery::findMoves(VertexId seed,
     {
       for (int j = i + 1; j < 4; ++j)
       {
-        std::uint64_t key = edgeKey(v[i], v[j]);
-        if (inputEdges_.count(key) ||
+        if (isInputEdge(v[i], v[j]) ||
           !triedEdges.insert({ std::min(v[i], v[j]), std::max(v[i], v[j]) }))
           continue;
         if (cachedEdgeRemoval(t, v[i], v[j], cost, candidate, !neutral))
@@ -951,7 +965,7 @@ bool Recovery::shrinkCrossingShell(const std::vector<TetId>& pipe, const FlipCos
       for (int j = i + 1; j < 4; ++j)
       {
         std::uint64_t key = edgeKey(v[i], v[j]);
-        if (inputEdges_.count(key) || !triedEdges.insert(key).second ||
+        if (isInputEdge(v[i], v[j]) || !triedEdges.insert(key).second ||
           cost.edge(v[i], v[j]) == 0 || !edgeShell(mesh_, t, v[i], v[j], shell, ring))
           continue;
         // Face (p,q,ring[k]) separates shell[k-1] from shell[k]; a 2-3 flip of it takes
@@ -997,7 +1011,7 @@ bool Recovery::removeCrossingDeep(const std::vector<TetId>& pipe,
       for (int j = i + 1; j < 4; ++j)
       {
         if (seen.insert(edgeKey(v[i], v[j])).second && cost.edge(v[i], v[j]) > 0 &&
-          !inputEdges_.count(edgeKey(v[i], v[j])))
+          !isInputEdge(v[i], v[j]))
           crossing.push_back({ v[i], v[j] });
       }
     }

@@ -237,7 +237,9 @@ void replaceTets(TetMesh& mesh,
     std::sort(k.begin(), k.end());
     return k;
   };
-  std::vector<BoundaryFace> boundary;
+  // Scratch kept between calls: recovery and optimisation call this for every move.
+  thread_local std::vector<BoundaryFace> boundary;
+  boundary.clear();
   for (TetId t : oldTets)
   {
     for (int f = 0; f < 4; ++f)
@@ -262,7 +264,8 @@ void replaceTets(TetMesh& mesh,
     TetId tet;
     int face;
   };
-  std::vector<OpenFace> open;
+  thread_local std::vector<OpenFace> open;
+  open.clear();
   for (const TetVertices& v : newTets)
   {
     TetId t = mesh.addTet(v[0], v[1], v[2], v[3]);

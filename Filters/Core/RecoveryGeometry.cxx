@@ -97,6 +97,35 @@ bool segmentsCross(const double* a, const double* b, const double* p, const doub
 
 bool simplexMeetsTetInterior(const double* const* points, int count, const double* const t[4])
 {
+  if (count == 2)
+  {
+    // A segment from a vertex of the tet (the usual case: the pipe of a missing edge grows
+    // from the star of its end point) enters the interior iff its other end is strictly
+    // inside the three faces through that vertex: along the segment their signs are those
+    // of the other end scaled by the parameter, and the opposite face is positive near the
+    // vertex. Vertices are compared by pointer, as the mesh passes them.
+    for (int end = 0; end < 2; ++end)
+    {
+      for (int i = 0; i < 4; ++i)
+      {
+        if (points[end] != t[i])
+          continue;
+        const double* other = points[1 - end];
+        for (int f = 0; f < 4; ++f)
+        {
+          if (f == i)
+            continue;
+          // Face f (opposite t[f]) replaced by `other` keeps the tet's positive orientation
+          // exactly when `other` is on t[f]'s side of it.
+          const double* q[4] = { t[0], t[1], t[2], t[3] };
+          q[f] = other;
+          if (orient3d(q[0], q[1], q[2], q[3]) <= 0)
+            return false;
+        }
+        return true;
+      }
+    }
+  }
   // Disjoint bounding boxes separate the sets (exact comparisons).
   for (int k = 0; k < 3; ++k)
   {
