@@ -37,27 +37,65 @@ struct TupleHash
   }
 };
 
-// Open-addressing map from a vertex tuple to a small int (the memo of one flip search): one
-// allocation per growth instead of one per entry.
-template<typename Key>
+// A sorted tuple of up to four vertex ids packed in two words (the key of the memo).
+struct PackedKey
+{
+  std::uint64_t hi, lo;
+  bool operator==(const PackedKey& o) const { return hi == o.hi && lo == o.lo; }
+};
+inline std::uint64_t pack(VertexId a, VertexId b)
+{
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+    static_cast<std::uint32_t>(b);
+}
+inline void sort2(VertexId& a, VertexId& b)
+{
+  if (b < a)
+    std::swap(a, b);
+}
+inline PackedKey edgeMemoKey(VertexId a, VertexId b)
+{
+  sort2(a, b);
+  return { pack(a, b), 0 };
+}
+inline PackedKey faceMemoKey(VertexId a, VertexId b, VertexId c)
+{
+  sort2(a, b);
+  sort2(b, c);
+  sort2(a, b);
+  return { pack(a, b), static_cast<std::uint32_t>(c) };
+}
+inline PackedKey tetMemoKey(const TetVertices& t)
+{
+  VertexId a = t[0], b = t[1], c = t[2], d = t[3];
+  sort2(a, b);
+  sort2(c, d);
+  sort2(a, c);
+  sort2(b, d);
+  sort2(b, c);
+  return { pack(a, b), pack(c, d) };
+}
+
+// Open-addressing map from a sorted vertex tuple to a small int (the memo of one flip
+// search): one allocation per growth instead of one per entry.
 class FlatMemo
 {
 public:
   // The cached value of k (values are non-negative counts), or -1.
-  int find(const Key& k) const
+  int find(const PackedKey& k) const
   {
     if (slots_.empty())
       return -1;
     std::size_t mask = slots_.size() - 1;
-    for (std::size_t i = TupleHash()(k) & mask;; i = (i + 1) & mask)
+    for (std::size_t i = hash(k) & mask;; i = (i + 1) & mask)
     {
-      if (!slots_[i].used)
+      if (slots_[i].value < 0)
         return -1;
       if (slots_[i].key == k)
         return slots_[i].value;
     }
   }
-  void store(const Key& k, int value)
+  void store(const PackedKey& k, int value)
   {
     if (2 * (size_ + 1) > slots_.size())
     {
@@ -66,7 +104,7 @@ public:
       size_ = 0;
       for (const Slot& s : old)
       {
-        if (s.used)
+        if (s.value >= 0)
           insert(s.key, s.value);
       }
     }
@@ -76,17 +114,21 @@ public:
 private:
   struct Slot
   {
-    Key key;
-    int value = 0;
-    bool used = false;
+    PackedKey key = { 0, 0 };
+    int value = -1; // -1: empty
   };
-  void insert(const Key& k, int value)
+  static std::size_t hash(const PackedKey& k)
+  {
+    std::uint64_t h = k.hi * 0x9e3779b97f4a7c15ull ^ k.lo * 0xc2b2ae3d27d4eb4full;
+    return static_cast<std::size_t>(h ^ (h >> 31));
+  }
+  void insert(const PackedKey& k, int value)
   {
     std::size_t mask = slots_.size() - 1;
-    std::size_t i = TupleHash()(k) & mask;
-    while (slots_[i].used)
+    std::size_t i = hash(k) & mask;
+    while (slots_[i].value >= 0)
       i = (i + 1) & mask;
-    slots_[i] = { k, value, true };
+    slots_[i] = { k, value };
     ++size_;
   }
   std::vector<Slot> slots_;
@@ -194,22 +236,19 @@ FlipCost memoized(const ItemCost& base, const TetMesh& mesh)
   const std::array<double, 6> box = base.box;
   struct Caches
   {
-    FlatMemo<std::array<VertexId, 4>> tets;
-    FlatMemo<std::array<VertexId, 3>> faces;
-    FlatMemo<std::array<VertexId, 2>> edges;
+    FlatMemo tets, faces, edges;
   };
   auto caches = std::make_shared<Caches>();
-  FlatMemo<std::array<VertexId, 4>>* tets = &caches->tets;
-  FlatMemo<std::array<VertexId, 3>>* faces = &caches->faces;
-  FlatMemo<std::array<VertexId, 2>>* edges = &caches->edges;
+  FlatMemo* tets = &caches->tets;
+  FlatMemo* faces = &caches->faces;
+  FlatMemo* edges = &caches->edges;
   FlipCost c;
   if (base.tet)
     c.tet = [caches, tets, f = base.tet, m, box](const TetVertices& t)
     {
       if (separatedFromBox(*m, box, t, true))
         return 0;
-      TetVertices k = t;
-      std::sort(k.begin(), k.end());
+      const PackedKey k = tetMemoKey(t);
       int value = tets->find(k);
       if (value < 0)
       {
@@ -223,7 +262,7 @@ FlipCost memoized(const ItemCost& base, const TetMesh& mesh)
     {
       if (separatedFromBox(*m, box, std::array<VertexId, 3>{ x, y, z }, false))
         return 0;
-      auto k = sortedTriangle(x, y, z);
+      const PackedKey k = faceMemoKey(x, y, z);
       int value = faces->find(k);
       if (value < 0)
       {
@@ -237,7 +276,7 @@ FlipCost memoized(const ItemCost& base, const TetMesh& mesh)
     {
       if (separatedFromBox(*m, box, std::array<VertexId, 2>{ u, v }, false))
         return 0;
-      std::array<VertexId, 2> k = { std::min(u, v), std::max(u, v) };
+      const PackedKey k = edgeMemoKey(u, v);
       int value = edges->find(k);
       if (value < 0)
       {
@@ -395,6 +434,8 @@ private:
   struct CachedCandidate
   {
     std::uint64_t clock = 0;
+    bool zeroOldCost = false; // the item meets no part of the move's region: no gain
+    bool built = false;       // ok and candidate computed
     bool ok = false;
     FlipCandidate candidate;
     std::vector<TetId> shell; // edge removal: the shell and ring it was computed for
@@ -472,19 +513,22 @@ bool Recovery::cachedFlip23(TetId t, int f, const FlipCost& cost, FlipCandidate&
   if (entry.clock == 0 || entry.shell.size() != 1 || entry.shell[0] != n ||
     entry.ring != ringScratch_)
   {
-    if (gainOnly && n != kNoNeighbor)
-    {
-      // The old cost of the flip: the two tets and the face between them.
-      const int* fv = kFaceVertices[f];
-      const VertexId* v = &ringScratch_[0];
-      if ((!cost.tet ||
-            (cost.tet(tetVertices(t)) == 0 && cost.tet(tetVertices(faceTet(n))) == 0)) &&
-        (!cost.face || cost.face(v[fv[0]], v[fv[1]], v[fv[2]]) == 0))
-        return false;
-    }
     entry.clock = 1;
     entry.shell.assign(1, n);
     entry.ring = ringScratch_;
+    entry.built = false;
+    // The old cost of the flip: the two tets and the face between them.
+    const int* fv = kFaceVertices[f];
+    const VertexId* v = &ringScratch_[0];
+    entry.zeroOldCost = n != kNoNeighbor &&
+      (!cost.tet || (cost.tet(tetVertices(t)) == 0 && cost.tet(tetVertices(faceTet(n))) == 0)) &&
+      (!cost.face || cost.face(v[fv[0]], v[fv[1]], v[fv[2]]) == 0);
+  }
+  if (gainOnly && entry.zeroOldCost)
+    return false;
+  if (!entry.built)
+  {
+    entry.built = true;
     entry.ok = flip23Candidate(mesh_, t, f, cost, entry.candidate);
   }
   if (entry.ok)
@@ -506,20 +550,28 @@ bool Recovery::cachedEdgeRemoval(TetId t,
   bool closed = edgeShell(mesh_, t, p, q, shellScratch_, ringScratch_);
   if (entry.clock == 0 || shellScratch_ != entry.shell || ringScratch_ != entry.ring)
   {
-    if (gainOnly && closed)
-    {
-      // The old cost of the removal: the edge, its faces and the tets of its shell.
-      bool zero = !cost.edge || cost.edge(p, q) == 0;
-      for (std::size_t k = 0; k < ringScratch_.size() && zero; ++k)
-        zero = (!cost.face || cost.face(p, q, ringScratch_[k]) == 0) &&
-          (!cost.tet || cost.tet(tetVertices(shellScratch_[k])) == 0);
-      if (zero)
-        return false;
-    }
     entry.clock = 1;
     entry.shell = shellScratch_;
     entry.ring = ringScratch_;
-    entry.ok = closed && edgeRemovalCandidate(mesh_, t, p, q, cost, entry.candidate);
+    entry.built = false;
+    // The old cost of the removal: the edge, its faces and the tets of its shell.
+    bool zero = closed && (!cost.edge || cost.edge(p, q) == 0);
+    for (std::size_t k = 0; k < ringScratch_.size() && zero; ++k)
+      zero = (!cost.face || cost.face(p, q, ringScratch_[k]) == 0) &&
+        (!cost.tet || cost.tet(tetVertices(shellScratch_[k])) == 0);
+    entry.zeroOldCost = zero;
+    if (!closed)
+    {
+      entry.built = true;
+      entry.ok = false;
+    }
+  }
+  if (gainOnly && entry.zeroOldCost)
+    return false;
+  if (!entry.built)
+  {
+    entry.built = true;
+    entry.ok = edgeRemovalCandidate(mesh_, t, p, q, cost, entry.candidate);
   }
   if (entry.ok)
     out = entry.candidate;
