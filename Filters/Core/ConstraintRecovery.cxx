@@ -13,6 +13,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <map>
 #include <memory>
@@ -433,7 +434,8 @@ private:
   // search), so the answer is the same. Cleared per flip search.
   struct CachedCandidate
   {
-    std::uint64_t clock = 0;
+    std::uint64_t clock = 0;  // 0: not computed
+    VertexId p = -1, q = -1;  // edge removal: the edge (its slot is a tet and a vertex pair)
     bool zeroOldCost = false; // the item meets no part of the move's region: no gain
     bool built = false;       // ok and candidate computed
     bool ok = false;
@@ -475,10 +477,47 @@ private:
   std::vector<std::uint64_t> vertexStamp_;
   std::uint64_t clock_ = 0;
   std::vector<Failure> failures_; // edges by index, then triangles after them
-  std::unordered_map<FaceRef, CachedCandidate> flip23Cache_;
+  // Candidates by slot (a face 4t+f, or a tet edge 6t+k), in a pool whose entries keep their
+  // vectors from one flip search to the next (no allocation per candidate).
+  class CandidateCache
+  {
+  public:
+    CachedCandidate& at(std::size_t slot)
+    {
+      if (slot >= slots_.size())
+        slots_.resize(2 * slot + 16, 0);
+      std::uint32_t& index = slots_[slot];
+      if (index == 0)
+      {
+        if (used_ == pool_.size())
+          pool_.emplace_back(); // a deque: references to earlier entries stay valid
+        pool_[used_].clock = 0;
+        index = static_cast<std::uint32_t>(++used_);
+        touched_.push_back(slot);
+      }
+      return pool_[index - 1];
+    }
+    void clear()
+    {
+      for (std::size_t slot : touched_)
+        slots_[slot] = 0;
+      touched_.clear();
+      used_ = 0;
+    }
+
+  private:
+    std::vector<std::uint32_t> slots_; // pool index + 1, or 0
+    std::deque<CachedCandidate> pool_;
+    std::size_t used_ = 0;
+    std::vector<std::size_t> touched_;
+  };
+  CandidateCache flip23Cache_, edgeRemovalCache_;
   std::vector<TetId> shellScratch_, starScratch_;
   ScratchSet<std::array<VertexId, 3>> triedFaces_; // findMoves scratch
   ScratchSet<std::array<VertexId, 2>> triedEdges_;
+  ScratchSet<std::array<VertexId, 2>> edgeScratch_; // shrinkCrossingShell, removeCrossingDeep
+  std::vector<TetId> shellScratch2_;
+  std::vector<VertexId> ringScratch2_;
   std::vector<std::uint32_t> pipeStamp_;
   std::uint32_t pipeEpoch_ = 0;
   struct TetCostEntry
@@ -491,7 +530,6 @@ private:
   std::vector<TetCostEntry> tetCostCache_;
   const FlipCost* tetCostOwner_ = nullptr;
   std::vector<VertexId> ringScratch_;
-  std::unordered_map<std::array<VertexId, 3>, CachedCandidate, TupleHash> edgeRemovalCache_;
   FlipCost lastSearchCost_; // the memoized measure of the latest flipUntil
   // Deep removals that failed in the current flip search, by edge, with the vertices whose
   // shells they examined (a Failure record): tried again only once one of those changed.
@@ -505,7 +543,7 @@ private:
 bool Recovery::cachedFlip23(TetId t, int f, const FlipCost& cost, FlipCandidate& out, bool gainOnly)
 {
   // The candidate depends on t's vertices, the neighbour across f and its apex.
-  CachedCandidate& entry = flip23Cache_[makeFaceRef(t, f)];
+  CachedCandidate& entry = flip23Cache_.at(static_cast<std::size_t>(makeFaceRef(t, f)));
   FaceRef n = mesh_.neighbor(t, f);
   ringScratch_.assign(
     &mesh_.tets[4 * static_cast<std::size_t>(t)], &mesh_.tets[4 * static_cast<std::size_t>(t)] + 4);
@@ -546,11 +584,22 @@ bool Recovery::cachedEdgeRemoval(TetId t,
   // The candidate depends only on the shell walked from t (its tet ids, which determine the
   // old tets, and its ring, which determines every tet priced): the same walk, the same
   // answer. Constrained flags do not change during a flip search.
-  CachedCandidate& entry = edgeRemovalCache_[{ t, p, q }];
+  // Slot: t and the pair of local indices of p and q (0..5); the entry names the edge too.
+  static constexpr int kPairSlot[4][4] = {
+    { -1, 0, 1, 2 }, { 0, -1, 3, 4 }, { 1, 3, -1, 5 }, { 2, 4, 5, -1 }
+  };
+  const int ip = localIndex(mesh_, t, p), iq = localIndex(mesh_, t, q);
+  if (ip < 0 || iq < 0 || ip == iq)
+    return false;
+  CachedCandidate& entry =
+    edgeRemovalCache_.at(6 * static_cast<std::size_t>(t) + kPairSlot[ip][iq]);
   bool closed = edgeShell(mesh_, t, p, q, shellScratch_, ringScratch_);
-  if (entry.clock == 0 || shellScratch_ != entry.shell || ringScratch_ != entry.ring)
+  if (entry.clock == 0 || entry.p != p || entry.q != q || shellScratch_ != entry.shell ||
+    ringScratch_ != entry.ring)
   {
     entry.clock = 1;
+    entry.p = p;
+    entry.q = q;
     entry.shell = shellScratch_;
     entry.ring = ringScratch_;
     entry.built = false;
@@ -1006,9 +1055,10 @@ bool Recovery::shrinkCrossingShell(const std::vector<TetId>& pipe, const FlipCos
 {
   FlipCandidate best, candidate;
   bool found = false;
-  std::set<std::uint64_t> triedEdges;
-  std::vector<TetId> shell;
-  std::vector<VertexId> ring;
+  ScratchSet<std::array<VertexId, 2>>& triedEdges = edgeScratch_;
+  triedEdges.clear();
+  std::vector<TetId>& shell = shellScratch2_;
+  std::vector<VertexId>& ring = ringScratch2_;
   for (TetId t : pipe)
   {
     TetVertices v = tetVertices(t);
@@ -1016,8 +1066,8 @@ bool Recovery::shrinkCrossingShell(const std::vector<TetId>& pipe, const FlipCos
     {
       for (int j = i + 1; j < 4; ++j)
       {
-        std::uint64_t key = edgeKey(v[i], v[j]);
-        if (isInputEdge(v[i], v[j]) || !triedEdges.insert(key).second ||
+        if (isInputEdge(v[i], v[j]) ||
+          !triedEdges.insert({ std::min(v[i], v[j]), std::max(v[i], v[j]) }) ||
           cost.edge(v[i], v[j]) == 0 || !edgeShell(mesh_, t, v[i], v[j], shell, ring))
           continue;
         // Face (p,q,ring[k]) separates shell[k-1] from shell[k]; a 2-3 flip of it takes
@@ -1054,7 +1104,8 @@ bool Recovery::removeCrossingDeep(const std::vector<TetId>& pipe,
   // per attempt: enough for the wrong diagonal of a planar quad, whose shell has 5-6 tets.
   constexpr int kLevels = 2, kBudget = 32;
   std::vector<std::array<VertexId, 2>> crossing;
-  std::set<std::uint64_t> seen;
+  ScratchSet<std::array<VertexId, 2>>& seen = edgeScratch_;
+  seen.clear();
   for (TetId t : pipe)
   {
     TetVertices v = tetVertices(t);
@@ -1062,8 +1113,8 @@ bool Recovery::removeCrossingDeep(const std::vector<TetId>& pipe,
     {
       for (int j = i + 1; j < 4; ++j)
       {
-        if (seen.insert(edgeKey(v[i], v[j])).second && cost.edge(v[i], v[j]) > 0 &&
-          !isInputEdge(v[i], v[j]))
+        if (seen.insert({ std::min(v[i], v[j]), std::max(v[i], v[j]) }) &&
+          cost.edge(v[i], v[j]) > 0 && !isInputEdge(v[i], v[j]))
           crossing.push_back({ v[i], v[j] });
       }
     }
