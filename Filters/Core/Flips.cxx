@@ -1,5 +1,6 @@
 #include "Flips.h"
 
+#include "FilteredPredicates.h"
 #include "Predicates.h"
 
 #include <algorithm>
@@ -34,7 +35,7 @@ bool positive(const TetMesh& mesh, const TetVertices& t)
     if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k])
       return false;
   }
-  return predicates::orient3d(a, b, c, d) > 0;
+  return predicates::orient3dFiltered(a, b, c, d) > 0;
 }
 
 TetVertices tetOf(const TetMesh& mesh, TetId t)

@@ -1,5 +1,6 @@
 #include "RecoveryGeometry.h"
 
+#include "FilteredPredicates.h"
 #include "Predicates.h"
 
 #include <algorithm>
@@ -26,7 +27,7 @@ int orient3d(const double* a, const double* b, const double* c, const double* d)
     if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k])
       return 0;
   }
-  return predicates::orient3d(a, b, c, d);
+  return predicates::orient3dFiltered(a, b, c, d);
 }
 
 // A coordinate axis whose projection keeps the triangle abc non-degenerate, or -1 when a, b, c
