@@ -78,7 +78,8 @@ inline PackedKey tetMemoKey(const TetVertices& t)
 }
 
 // Open-addressing map from a sorted vertex tuple to a small int (the memo of one flip
-// search): one allocation per growth instead of one per entry.
+// search): one allocation per growth instead of one per entry, and cleared in O(1) by an
+// epoch, so that later searches reuse its slots.
 class FlatMemo
 {
 public:
@@ -90,7 +91,7 @@ public:
     std::size_t mask = slots_.size() - 1;
     for (std::size_t i = hash(k) & mask;; i = (i + 1) & mask)
     {
-      if (slots_[i].value < 0)
+      if (slots_[i].epoch != epoch_)
         return -1;
       if (slots_[i].key == k)
         return slots_[i].value;
@@ -102,21 +103,34 @@ public:
     {
       std::vector<Slot> old(std::max<std::size_t>(64, 2 * slots_.size()));
       old.swap(slots_);
+      const std::uint32_t live = epoch_;
+      epoch_ = 1;
       size_ = 0;
       for (const Slot& s : old)
       {
-        if (s.value >= 0)
+        if (s.epoch == live)
           insert(s.key, s.value);
       }
     }
     insert(k, value);
+  }
+  void clear()
+  {
+    size_ = 0;
+    if (++epoch_ == 0)
+    {
+      for (Slot& slot : slots_)
+        slot.epoch = 0;
+      epoch_ = 1;
+    }
   }
 
 private:
   struct Slot
   {
     PackedKey key = { 0, 0 };
-    int value = -1; // -1: empty
+    int value = 0;
+    std::uint32_t epoch = 0; // live when equal to epoch_
   };
   static std::size_t hash(const PackedKey& k)
   {
@@ -127,13 +141,20 @@ private:
   {
     std::size_t mask = slots_.size() - 1;
     std::size_t i = hash(k) & mask;
-    while (slots_[i].value >= 0)
+    while (slots_[i].epoch == epoch_)
       i = (i + 1) & mask;
-    slots_[i] = { k, value };
+    slots_[i] = { k, value, epoch_ };
     ++size_;
   }
   std::vector<Slot> slots_;
   std::size_t size_ = 0;
+  std::uint32_t epoch_ = 1;
+};
+
+// The memos of one measure (tets, faces, edges).
+struct MemoCaches
+{
+  FlatMemo tets, faces, edges;
 };
 
 // The measure of how much of the mesh a missing item cuts, with the bounding box of the
@@ -231,15 +252,11 @@ private:
 // prices all ring triangulations). All three tests are symmetric in their vertices. Entities
 // separated from the item's box score 0 before the look-up (the tests count tet interiors,
 // open triangles and open segments, so only separation counts, not touching boxes).
-FlipCost memoized(const ItemCost& base, const TetMesh& mesh)
+// `caches` must be empty; the measure keeps it alive.
+FlipCost memoized(const ItemCost& base, const TetMesh& mesh, std::shared_ptr<MemoCaches> caches)
 {
   const TetMesh* m = &mesh;
   const std::array<double, 6> box = base.box;
-  struct Caches
-  {
-    FlatMemo tets, faces, edges;
-  };
-  auto caches = std::make_shared<Caches>();
   FlatMemo* tets = &caches->tets;
   FlatMemo* faces = &caches->faces;
   FlatMemo* edges = &caches->edges;
@@ -391,6 +408,23 @@ private:
     const std::function<bool()>& done,
     bool& moved);
   bool insertSteinerNear(VertexId seed, const ItemCost& cost);
+  // Empty memos for a new measure: a cleared one of the pool that no measure holds any more
+  // (their slots are reused from search to search), else a new one.
+  std::shared_ptr<MemoCaches> emptyMemo()
+  {
+    for (const auto& caches : memoPool_)
+    {
+      if (caches.use_count() == 1)
+      {
+        caches->tets.clear();
+        caches->faces.clear();
+        caches->edges.clear();
+        return caches;
+      }
+    }
+    memoPool_.push_back(std::make_shared<MemoCaches>());
+    return memoPool_.back();
+  }
   // "input triangles i and j intersect" for the first input triangle of the recovery item
   // `key` (an edge index, or edges.size() + a triangle index) that meets another one other
   // than in a vertex or edge they share; "" if none does.
@@ -530,6 +564,7 @@ private:
   std::vector<TetCostEntry> tetCostCache_;
   const FlipCost* tetCostOwner_ = nullptr;
   std::vector<VertexId> ringScratch_;
+  std::vector<std::shared_ptr<MemoCaches>> memoPool_;
   FlipCost lastSearchCost_; // the memoized measure of the latest flipUntil
   // Deep removals that failed in the current flip search, by edge, with the vertices whose
   // shells they examined (a Failure record): tried again only once one of those changed.
@@ -1000,7 +1035,7 @@ bool Recovery::flipUntil(VertexId seed,
   const ItemCost& exactCost,
   const std::function<bool()>& done)
 {
-  const FlipCost cost = memoized(exactCost, mesh_);
+  const FlipCost cost = memoized(exactCost, mesh_, emptyMemo());
   lastSearchCost_ = cost;
   flip23Cache_.clear();
   edgeRemovalCache_.clear();
@@ -1182,7 +1217,7 @@ bool Recovery::onInputSurface(const double* x, double tolerance) const
 
 bool Recovery::insertSteinerNear(VertexId seed, const ItemCost& exactCost)
 {
-  const FlipCost cost = memoized(exactCost, mesh_);
+  const FlipCost cost = memoized(exactCost, mesh_, emptyMemo());
   std::vector<TetId> pipe;
   collectPipe(seed, cost, pipe);
   // Candidate positions, best first. (1) Next to the middle of an edge that cuts the item,
