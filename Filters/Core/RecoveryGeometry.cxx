@@ -96,37 +96,94 @@ bool segmentsCross(const double* a, const double* b, const double* p, const doub
   return properCross2D(a, b, p, q, axis);
 }
 
-bool simplexMeetsTetInterior(const double* const* points, int count, const double* const t[4])
+namespace
 {
-  if (count == 2)
+// Sign of n_f . (x - t[i]) for the face f of the positive tet t through its vertex t[i]
+// (f != i), n_f pointing inwards: orient3d of t with t[f] replaced by x.
+int insideFace(const double* const t[4], int f, const double* x)
+{
+  const double* q[4] = { t[0], t[1], t[2], t[3] };
+  q[f] = x;
+  return orient3d(q[0], q[1], q[2], q[3]);
+}
+
+// The open segment (t[i], b) meets the open tet iff b is strictly inside the three faces
+// through t[i]: along the segment their signs are those of b scaled by the parameter, and the
+// opposite face is positive near t[i].
+bool segmentFromVertexMeetsTet(const double* const t[4], int i, const double* b)
+{
+  for (int f = 0; f < 4; ++f)
   {
-    // A segment from a vertex of the tet (the usual case: the pipe of a missing edge grows
-    // from the star of its end point) enters the interior iff its other end is strictly
-    // inside the three faces through that vertex: along the segment their signs are those
-    // of the other end scaled by the parameter, and the opposite face is positive near the
-    // vertex. Vertices are compared by pointer, as the mesh passes them.
-    for (int end = 0; end < 2; ++end)
+    if (f != i && insideFace(t, f, b) <= 0)
+      return false;
+  }
+  return true;
+}
+
+// The open triangle (a = t[i], b, c) meets the open tet iff its open wedge at a meets the open
+// cone of the tet at a (both sets are those cones near a, and lie inside them). A point
+// a + r (b - a) + (c - a), r > 0, is inside face f iff r A_f + B_f > 0 with A_f = n_f.(b-a),
+// B_f = n_f.(c-a): a constraint r > -B_f/A_f (A_f > 0 > B_f), r < -B_f/A_f (A_f < 0 < B_f),
+// none (both >= 0, one > 0), or no r at all (both <= 0). A lower bound from f is below an
+// upper one from g iff A_f B_g - A_g B_f > 0, and that is (n_f x n_g).((b-a) x (c-a)) by
+// Binet-Cauchy, with n_f x n_g along the edge (a, t[m]) shared by the two faces: its sign is
+// that of det(t[f]-a, t[g]-a, t[m]-a) det(b-a, c-a, t[m]-a) (the first factor calibrates the
+// direction: for b = t[f], c = t[g] the expression is A_f B_g > 0). All signs exact.
+bool triangleFromVertexMeetsTet(const double* const t[4], int i, const double* b, const double* c)
+{
+  int lower[3], upper[3];
+  int lowerCount = 0, upperCount = 0;
+  for (int f = 0; f < 4; ++f)
+  {
+    if (f == i)
+      continue;
+    const int sb = insideFace(t, f, b), sc = insideFace(t, f, c);
+    if (sb <= 0 && sc <= 0)
+      return false;
+    if (sb > 0 && sc < 0)
+      lower[lowerCount++] = f;
+    else if (sb < 0 && sc > 0)
+      upper[upperCount++] = f;
+  }
+  const double* a = t[i];
+  for (int l = 0; l < lowerCount; ++l)
+  {
+    for (int u = 0; u < upperCount; ++u)
     {
-      for (int i = 0; i < 4; ++i)
-      {
-        if (points[end] != t[i])
-          continue;
-        const double* other = points[1 - end];
-        for (int f = 0; f < 4; ++f)
-        {
-          if (f == i)
-            continue;
-          // Face f (opposite t[f]) replaced by `other` keeps the tet's positive orientation
-          // exactly when `other` is on t[f]'s side of it.
-          const double* q[4] = { t[0], t[1], t[2], t[3] };
-          q[f] = other;
-          if (orient3d(q[0], q[1], q[2], q[3]) <= 0)
-            return false;
-        }
-        return true;
-      }
+      const int f = lower[l], g = upper[u], m = 6 - i - f - g;
+      const int calibration = orient3d(t[f], t[g], t[m], a);
+      const int side = orient3d(b, c, t[m], a);
+      if (calibration * side <= 0)
+        return false;
     }
   }
+  return true;
+}
+} // namespace
+
+bool simplexMeetsTetInterior(const double* const* points, int count, const double* const t[4])
+{
+  // A simplex with a vertex of the tet (the usual case: a missing item's pipe grows from the
+  // star of its first vertex) is decided at that vertex by a few orientations. Vertices are
+  // compared by pointer, as the mesh passes them.
+  for (int end = 0; end < count; ++end)
+  {
+    for (int i = 0; i < 4; ++i)
+    {
+      if (points[end] != t[i])
+        continue;
+      if (count == 2)
+        return segmentFromVertexMeetsTet(t, i, points[1 - end]);
+      return triangleFromVertexMeetsTet(t, i, points[(end + 1) % 3], points[(end + 2) % 3]);
+    }
+  }
+  return simplexMeetsTetInteriorBySeparation(points, count, t);
+}
+
+bool simplexMeetsTetInteriorBySeparation(const double* const* points,
+  int count,
+  const double* const t[4])
+{
   // Disjoint bounding boxes separate the sets (exact comparisons).
   for (int k = 0; k < 3; ++k)
   {
