@@ -963,7 +963,11 @@ int Recovery::findMoves(VertexId seed,
     for (int f = 0; f < 4; ++f)
     {
       const int* fv = kFaceVertices[f];
-      if (!triedFaces.insert(sortedTriangle(v[fv[0]], v[fv[1]], v[fv[2]])))
+      VertexId a = v[fv[0]], b = v[fv[1]], c = v[fv[2]];
+      sort2(a, b);
+      sort2(b, c);
+      sort2(a, b);
+      if (!triedFaces.insert({ a, b, c }))
         continue;
       if (cachedFlip23(t, f, cost, candidate, !neutral))
         consider(true);
