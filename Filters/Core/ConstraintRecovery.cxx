@@ -390,7 +390,11 @@ private:
   int tetCost(const FlipCost& cost, TetId t);
   int exactTetCost(const FlipCost& cost, const TetVertices& v) const;
   // Greedy strictly-improving flips on the pipe; true when `done()` holds at the end.
-  bool flipUntil(VertexId seed, const ItemCost& cost, const std::function<bool()>& done);
+  // `search` names the item and its measure (see deepFailuresBySearch_).
+  bool flipUntil(VertexId seed,
+    const ItemCost& cost,
+    const std::function<bool()>& done,
+    std::size_t search);
   // Collects the pipe and the flips on it; returns the best strict gain (0: none), with the
   // best move in `best` and the cost-neutral ones appended to `neutral` when given.
   int findMoves(VertexId seed,
@@ -566,9 +570,12 @@ private:
   std::vector<VertexId> ringScratch_;
   std::vector<std::shared_ptr<MemoCaches>> memoPool_;
   FlipCost lastSearchCost_; // the memoized measure of the latest flipUntil
-  // Deep removals that failed in the current flip search, by edge, with the vertices whose
-  // shells they examined (a Failure record): tried again only once one of those changed.
-  std::unordered_map<std::uint64_t, Failure> deepFailures_;
+  // Deep removals that failed, by search (an input edge alone: 2e; with its triangles:
+  // 2e+1; a triangle: 2 edges + t) and by edge, with the vertices whose shells they examined
+  // (a Failure record): tried again only once one of those changed, in this flip search or a
+  // later one of the same item and measure (the attempt depends on nothing else).
+  std::unordered_map<std::size_t, std::unordered_map<std::uint64_t, Failure>> deepFailuresBySearch_;
+  std::size_t search_ = 0; // of the current flip search
   // Input edges are never removed (their faces may not be recovered yet).
   DeepEdgeRemoval deep_{ mesh_, index_, [this](VertexId a, VertexId b) {
                           return isInputEdge(a, b);
@@ -1037,13 +1044,14 @@ bool Recovery::lookahead(VertexId seed, const FlipCost& cost, std::vector<FlipCa
 
 bool Recovery::flipUntil(VertexId seed,
   const ItemCost& exactCost,
-  const std::function<bool()>& done)
+  const std::function<bool()>& done,
+  std::size_t search)
 {
   const FlipCost cost = memoized(exactCost, mesh_, emptyMemo());
   lastSearchCost_ = cost;
   flip23Cache_.clear();
   edgeRemovalCache_.clear();
-  deepFailures_.clear();
+  search_ = search;
   ++tetCostEpoch_; // forget the cached tet costs (in O(1))
   tetCostOwner_ = &cost;
   struct OwnerReset
@@ -1166,9 +1174,13 @@ bool Recovery::removeCrossingDeep(const std::vector<TetId>& pipe,
   deep_.seen = &examined;
   for (const auto& edge : crossing)
   {
-    auto failed = deepFailures_.find(edgeKey(edge[0], edge[1]));
-    if (failed != deepFailures_.end() && unchangedSince(failed->second))
-      continue;
+    const auto failures = deepFailuresBySearch_.find(search_);
+    if (failures != deepFailuresBySearch_.end())
+    {
+      const auto failed = failures->second.find(edgeKey(edge[0], edge[1]));
+      if (failed != failures->second.end() && unchangedSince(failed->second))
+        continue;
+    }
     int budget = kBudget;
     examined.clear();
     const bool removed = deep_.remove(edge[0], edge[1], kLevels, cost, budget);
@@ -1192,7 +1204,7 @@ bool Recovery::removeCrossingDeep(const std::vector<TetId>& pipe,
     deep_.undoTo(0, 0);
     // The attempt was undone (no stamps): it would fail the same way until one of the
     // vertices it examined gets a changed tet.
-    Failure& failure = deepFailures_[edgeKey(edge[0], edge[1])];
+    Failure& failure = deepFailuresBySearch_[search_][edgeKey(edge[0], edge[1])];
     std::sort(examined.begin(), examined.end());
     examined.erase(std::unique(examined.begin(), examined.end()), examined.end());
     failure.vertices = examined;
@@ -1463,9 +1475,9 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
     const VertexId a = edges[e][0], b = edges[e][1];
     auto exists = [&] { return edgePresent(e); };
     currentItem_ = edgeName(e);
-    if (flipUntil(a, edgeCost(a, b), exists))
+    if (flipUntil(a, edgeCost(a, b), exists, 2 * e))
       return true;
-    if (!interrupted_ && flipUntil(a, edgeAndFacesCost(e), exists))
+    if (!interrupted_ && flipUntil(a, edgeAndFacesCost(e), exists, 2 * e + 1))
       return true;
     if (!interrupted_)
       recordFailure(failures_[e], a, lastSearchCost_);
@@ -1522,7 +1534,7 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
           face = findFace(mesh_, index_, t[0], t[1], t[2]);
           return face >= 0;
         };
-        if (!flipUntil(t[0], faceCost(t), exists) && !interrupted_)
+        if (!flipUntil(t[0], faceCost(t), exists, 2 * edges.size() + i) && !interrupted_)
           recordFailure(failures_[edges.size() + i], t[0], lastSearchCost_);
         if (interrupted_)
           return result_;
