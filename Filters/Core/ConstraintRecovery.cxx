@@ -1019,8 +1019,16 @@ bool Recovery::lookahead(VertexId seed, const FlipCost& cost, std::vector<FlipCa
   {
     const std::vector<TetVertices>& old = oldVertices[m];
     std::vector<TetId> oldTets;
-    for (const TetVertices& v : old)
+    for (std::size_t k = 0; k < old.size(); ++k)
     {
+      const TetVertices& v = old[k];
+      // The same id while no undo has renamed it (a tet is unique by its vertex tuple).
+      const TetId id = neutral[m].oldTets[k];
+      if (!mesh_.isDeleted(id) && tetVertices(id) == v)
+      {
+        oldTets.push_back(id);
+        continue;
+      }
       vertexStar(mesh_, index_, v[0], star);
       for (TetId t : star)
       {
