@@ -120,6 +120,47 @@ bool segmentFromVertexMeetsTet(const double* const t[4], int i, const double* b)
   return true;
 }
 
+// The open segment ab meets the open tet (any position): the point (1-s) a + s b is inside
+// face f iff (1-s) A_f + s B_f > 0, with A_f, B_f the signed distances of a and b. A face
+// with A_f, B_f <= 0 excludes the segment; A_f < 0 < B_f bounds s from below by the crossing
+// with plane f, A_f > 0 > B_f from above; the others do not constrain. A lower bound from f
+// is below an upper one from g iff A_g B_f - A_f B_g > 0, which is (n_g x n_f).((a-e0) x
+// (b-e0)) (Binet-Cauchy; e0, e1: the edge shared by faces f and g, along n_g x n_f): the sign
+// of -det(t[f]-e0, t[g]-e0, e1-e0) det(a-e0, b-e0, e1-e0) (calibrated on a = t[f], b = t[g],
+// where the expression is -A_f B_g < 0). All signs exact.
+bool segmentMeetsTet(const double* const t[4], const double* a, const double* b)
+{
+  int lower[4], upper[4];
+  int lowerCount = 0, upperCount = 0;
+  for (int f = 0; f < 4; ++f)
+  {
+    const int sa = insideFace(t, f, a), sb = insideFace(t, f, b);
+    if (sa <= 0 && sb <= 0)
+      return false;
+    if (sa < 0 && sb > 0)
+      lower[lowerCount++] = f;
+    else if (sa > 0 && sb < 0)
+      upper[upperCount++] = f;
+  }
+  for (int l = 0; l < lowerCount; ++l)
+  {
+    for (int u = 0; u < upperCount; ++u)
+    {
+      const int f = lower[l], g = upper[u];
+      int edge[2], n = 0;
+      for (int k = 0; k < 4; ++k)
+      {
+        if (k != f && k != g)
+          edge[n++] = k;
+      }
+      const double *e0 = t[edge[0]], *e1 = t[edge[1]];
+      if (orient3d(t[f], t[g], e1, e0) * orient3d(a, b, e1, e0) >= 0)
+        return false;
+    }
+  }
+  return true;
+}
+
 // The open triangle (a = t[i], b, c) meets the open tet iff its open wedge at a meets the open
 // cone of the tet at a (both sets are those cones near a, and lie inside them). A point
 // a + r (b - a) + (c - a), r > 0, is inside face f iff r A_f + B_f > 0 with A_f = n_f.(b-a),
@@ -164,8 +205,9 @@ bool triangleFromVertexMeetsTet(const double* const t[4], int i, const double* b
 bool simplexMeetsTetInterior(const double* const* points, int count, const double* const t[4])
 {
   // A simplex with a vertex of the tet (the usual case: a missing item's pipe grows from the
-  // star of its first vertex) is decided at that vertex by a few orientations. Vertices are
-  // compared by pointer, as the mesh passes them.
+  // star of its first vertex) is decided at that vertex by a few orientations, any segment by
+  // its crossings with the face planes. Vertices are compared by pointer, as the mesh passes
+  // them.
   for (int end = 0; end < count; ++end)
   {
     for (int i = 0; i < 4; ++i)
@@ -177,6 +219,8 @@ bool simplexMeetsTetInterior(const double* const* points, int count, const doubl
       return triangleFromVertexMeetsTet(t, i, points[(end + 1) % 3], points[(end + 2) % 3]);
     }
   }
+  if (count == 2)
+    return segmentMeetsTet(t, points[0], points[1]);
   return simplexMeetsTetInteriorBySeparation(points, count, t);
 }
 

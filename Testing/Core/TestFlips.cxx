@@ -245,17 +245,18 @@ TEST(RecoveryGeometry, SegmentAndTriangle)
   EXPECT_FALSE(geometry::segmentMeetsTriangle(e, g, p, q, r));
 }
 
-TEST(RecoveryGeometry, SimplexFromTetVertexAgreesWithSeparation)
+TEST(RecoveryGeometry, SimplexInTetAgreesWithSeparation)
 {
   // Segments and triangles with a vertex of the tet are decided by orientations at that
-  // vertex: the same answers as the separating-plane search, on small integer coordinates
-  // (many coplanar and collinear configurations) and on random ones.
+  // vertex, other segments by their crossings with the face planes: the same answers as the
+  // separating-plane search, on small integer coordinates (many coplanar and collinear
+  // configurations) and on random ones.
   std::mt19937 rng(12345);
   int meets[2] = { 0, 0 }; // per simplex kind: both answers must occur often
   int missed[2] = { 0, 0 };
-  for (int trial = 0; trial < 200000; ++trial)
+  for (int trial = 0; trial < 400000; ++trial)
   {
-    const bool lattice = trial % 2 == 0;
+    const bool lattice = (trial / 2) % 2 == 0;
     std::uniform_int_distribution<int> cell(-2, 2);
     std::uniform_real_distribution<double> any(-1.0, 1.0);
     double p[7][3];
@@ -268,9 +269,12 @@ TEST(RecoveryGeometry, SimplexFromTetVertexAgreesWithSeparation)
       continue;
     if (orientation < 0)
       std::swap(t[0], t[1]);
-    // A simplex from a tet vertex; its other vertices are new points or other tet vertices.
+    // A simplex from a tet vertex (every other segment: from anywhere); its other vertices
+    // are new points or other tet vertices.
     const int count = 2 + trial % 2;
     const double* simplex[3] = { t[rng() % 4], p[4], p[5] };
+    if (count == 2 && (trial / 4) % 2 == 0)
+      simplex[0] = p[6];
     if (rng() % 4 == 0)
       simplex[1] = t[rng() % 4];
     if (count == 3 && rng() % 4 == 0)
