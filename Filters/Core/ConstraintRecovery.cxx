@@ -13,13 +13,13 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <map>
 #include <memory>
 #include <set>
 #include <sstream>
 #include <unordered_map>
-#include <unordered_set>
 
 namespace tetmesher
 {
@@ -38,60 +38,123 @@ struct TupleHash
   }
 };
 
-// Open-addressing map from a vertex tuple to a small int (the memo of one flip search): one
-// allocation per growth instead of one per entry.
-template<typename Key>
+// A sorted tuple of up to four vertex ids packed in two words (the key of the memo).
+struct PackedKey
+{
+  std::uint64_t hi, lo;
+  bool operator==(const PackedKey& o) const { return hi == o.hi && lo == o.lo; }
+};
+inline std::uint64_t pack(VertexId a, VertexId b)
+{
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+    static_cast<std::uint32_t>(b);
+}
+inline void sort2(VertexId& a, VertexId& b)
+{
+  if (b < a)
+    std::swap(a, b);
+}
+inline PackedKey edgeMemoKey(VertexId a, VertexId b)
+{
+  sort2(a, b);
+  return { pack(a, b), 0 };
+}
+inline PackedKey faceMemoKey(VertexId a, VertexId b, VertexId c)
+{
+  sort2(a, b);
+  sort2(b, c);
+  sort2(a, b);
+  return { pack(a, b), static_cast<std::uint32_t>(c) };
+}
+inline PackedKey tetMemoKey(const TetVertices& t)
+{
+  VertexId a = t[0], b = t[1], c = t[2], d = t[3];
+  sort2(a, b);
+  sort2(c, d);
+  sort2(a, c);
+  sort2(b, d);
+  sort2(b, c);
+  return { pack(a, b), pack(c, d) };
+}
+
+// Open-addressing map from a sorted vertex tuple to a small int (the memo of one flip
+// search): one allocation per growth instead of one per entry, and cleared in O(1) by an
+// epoch, so that later searches reuse its slots.
 class FlatMemo
 {
 public:
   // The cached value of k (values are non-negative counts), or -1.
-  int find(const Key& k) const
+  int find(const PackedKey& k) const
   {
     if (slots_.empty())
       return -1;
     std::size_t mask = slots_.size() - 1;
-    for (std::size_t i = TupleHash()(k) & mask;; i = (i + 1) & mask)
+    for (std::size_t i = hash(k) & mask;; i = (i + 1) & mask)
     {
-      if (!slots_[i].used)
+      if (slots_[i].epoch != epoch_)
         return -1;
       if (slots_[i].key == k)
         return slots_[i].value;
     }
   }
-  void store(const Key& k, int value)
+  void store(const PackedKey& k, int value)
   {
     if (2 * (size_ + 1) > slots_.size())
     {
       std::vector<Slot> old(std::max<std::size_t>(64, 2 * slots_.size()));
       old.swap(slots_);
+      const std::uint32_t live = epoch_;
+      epoch_ = 1;
       size_ = 0;
       for (const Slot& s : old)
       {
-        if (s.used)
+        if (s.epoch == live)
           insert(s.key, s.value);
       }
     }
     insert(k, value);
   }
+  void clear()
+  {
+    size_ = 0;
+    if (++epoch_ == 0)
+    {
+      for (Slot& slot : slots_)
+        slot.epoch = 0;
+      epoch_ = 1;
+    }
+  }
 
 private:
   struct Slot
   {
-    Key key;
+    PackedKey key = { 0, 0 };
     int value = 0;
-    bool used = false;
+    std::uint32_t epoch = 0; // live when equal to epoch_
   };
-  void insert(const Key& k, int value)
+  static std::size_t hash(const PackedKey& k)
+  {
+    std::uint64_t h = k.hi * 0x9e3779b97f4a7c15ull ^ k.lo * 0xc2b2ae3d27d4eb4full;
+    return static_cast<std::size_t>(h ^ (h >> 31));
+  }
+  void insert(const PackedKey& k, int value)
   {
     std::size_t mask = slots_.size() - 1;
-    std::size_t i = TupleHash()(k) & mask;
-    while (slots_[i].used)
+    std::size_t i = hash(k) & mask;
+    while (slots_[i].epoch == epoch_)
       i = (i + 1) & mask;
-    slots_[i] = { k, value, true };
+    slots_[i] = { k, value, epoch_ };
     ++size_;
   }
   std::vector<Slot> slots_;
   std::size_t size_ = 0;
+  std::uint32_t epoch_ = 1;
+};
+
+// The memos of one measure (tets, faces, edges).
+struct MemoCaches
+{
+  FlatMemo tets, faces, edges;
 };
 
 // The measure of how much of the mesh a missing item cuts, with the bounding box of the
@@ -189,28 +252,21 @@ private:
 // prices all ring triangulations). All three tests are symmetric in their vertices. Entities
 // separated from the item's box score 0 before the look-up (the tests count tet interiors,
 // open triangles and open segments, so only separation counts, not touching boxes).
-FlipCost memoized(const ItemCost& base, const TetMesh& mesh)
+// `caches` must be empty; the measure keeps it alive.
+FlipCost memoized(const ItemCost& base, const TetMesh& mesh, std::shared_ptr<MemoCaches> caches)
 {
   const TetMesh* m = &mesh;
   const std::array<double, 6> box = base.box;
-  struct Caches
-  {
-    FlatMemo<std::array<VertexId, 4>> tets;
-    FlatMemo<std::array<VertexId, 3>> faces;
-    FlatMemo<std::array<VertexId, 2>> edges;
-  };
-  auto caches = std::make_shared<Caches>();
-  FlatMemo<std::array<VertexId, 4>>* tets = &caches->tets;
-  FlatMemo<std::array<VertexId, 3>>* faces = &caches->faces;
-  FlatMemo<std::array<VertexId, 2>>* edges = &caches->edges;
+  FlatMemo* tets = &caches->tets;
+  FlatMemo* faces = &caches->faces;
+  FlatMemo* edges = &caches->edges;
   FlipCost c;
   if (base.tet)
     c.tet = [caches, tets, f = base.tet, m, box](const TetVertices& t)
     {
       if (separatedFromBox(*m, box, t, true))
         return 0;
-      TetVertices k = t;
-      std::sort(k.begin(), k.end());
+      const PackedKey k = tetMemoKey(t);
       int value = tets->find(k);
       if (value < 0)
       {
@@ -224,7 +280,7 @@ FlipCost memoized(const ItemCost& base, const TetMesh& mesh)
     {
       if (separatedFromBox(*m, box, std::array<VertexId, 3>{ x, y, z }, false))
         return 0;
-      auto k = sortedTriangle(x, y, z);
+      const PackedKey k = faceMemoKey(x, y, z);
       int value = faces->find(k);
       if (value < 0)
       {
@@ -238,7 +294,7 @@ FlipCost memoized(const ItemCost& base, const TetMesh& mesh)
     {
       if (separatedFromBox(*m, box, std::array<VertexId, 2>{ u, v }, false))
         return 0;
-      std::array<VertexId, 2> k = { std::min(u, v), std::max(u, v) };
+      const PackedKey k = edgeMemoKey(u, v);
       int value = edges->find(k);
       if (value < 0)
       {
@@ -270,11 +326,14 @@ public:
   {
     index_.rebuild(mesh_);
     std::map<std::uint64_t, std::size_t> edgeIndex;
+    // The edges are sorted (a < b): those of input point a start at edgeStart_[a].
+    edgeStart_.assign(static_cast<std::size_t>(surface_.pointCount) + 1, 0);
+    for (const auto& edge : surface_.edges)
+      ++edgeStart_[edge[0] + 1];
+    for (std::size_t v = 0; v + 1 < edgeStart_.size(); ++v)
+      edgeStart_[v + 1] += edgeStart_[v];
     for (std::size_t e = 0; e < surface_.edges.size(); ++e)
-    {
-      inputEdges_.insert(edgeKey(surface_.edges[e][0], surface_.edges[e][1]));
       edgeIndex.emplace(edgeKey(surface_.edges[e][0], surface_.edges[e][1]), e);
-    }
     edgeTriangles_.resize(surface_.edges.size());
     for (const auto& t : surface_.triangles)
     {
@@ -297,6 +356,19 @@ public:
 
 private:
   const double* point(VertexId v) const { return mesh_.point(v); }
+  bool isInputEdge(VertexId a, VertexId b) const
+  {
+    if (a > b)
+      std::swap(a, b);
+    if (a < 0 || b >= surface_.pointCount)
+      return false; // Steiner points and the Delaunay box are on no input edge
+    for (std::int32_t e = edgeStart_[a]; e < edgeStart_[a + 1]; ++e)
+    {
+      if (surface_.edges[e][1] == b)
+        return true;
+    }
+    return false;
+  }
   TetVertices tetVertices(TetId t) const
   {
     return { mesh_.vertex(t, 0), mesh_.vertex(t, 1), mesh_.vertex(t, 2), mesh_.vertex(t, 3) };
@@ -318,7 +390,11 @@ private:
   int tetCost(const FlipCost& cost, TetId t);
   int exactTetCost(const FlipCost& cost, const TetVertices& v) const;
   // Greedy strictly-improving flips on the pipe; true when `done()` holds at the end.
-  bool flipUntil(VertexId seed, const ItemCost& cost, const std::function<bool()>& done);
+  // `search` names the item and its measure (see deepFailuresBySearch_).
+  bool flipUntil(VertexId seed,
+    const ItemCost& cost,
+    const std::function<bool()>& done,
+    std::size_t search);
   // Collects the pipe and the flips on it; returns the best strict gain (0: none), with the
   // best move in `best` and the cost-neutral ones appended to `neutral` when given.
   int findMoves(VertexId seed,
@@ -336,6 +412,23 @@ private:
     const std::function<bool()>& done,
     bool& moved);
   bool insertSteinerNear(VertexId seed, const ItemCost& cost);
+  // Empty memos for a new measure: a cleared one of the pool that no measure holds any more
+  // (their slots are reused from search to search), else a new one.
+  std::shared_ptr<MemoCaches> emptyMemo()
+  {
+    for (const auto& caches : memoPool_)
+    {
+      if (caches.use_count() == 1)
+      {
+        caches->tets.clear();
+        caches->faces.clear();
+        caches->edges.clear();
+        return caches;
+      }
+    }
+    memoPool_.push_back(std::make_shared<MemoCaches>());
+    return memoPool_.back();
+  }
   // "input triangles i and j intersect" for the first input triangle of the recovery item
   // `key` (an edge index, or edges.size() + a triangle index) that meets another one other
   // than in a vertex or edge they share; "" if none does.
@@ -379,14 +472,28 @@ private:
   // search), so the answer is the same. Cleared per flip search.
   struct CachedCandidate
   {
-    std::uint64_t clock = 0;
+    std::uint64_t clock = 0;  // 0: not computed
+    VertexId p = -1, q = -1;  // edge removal: the edge (its slot is a tet and a vertex pair)
+    bool zeroOldCost = false; // the item meets no part of the move's region: no gain
+    bool built = false;       // ok and candidate computed
     bool ok = false;
     FlipCandidate candidate;
     std::vector<TetId> shell; // edge removal: the shell and ring it was computed for
     std::vector<VertexId> ring;
   };
-  bool cachedFlip23(TetId t, int f, const FlipCost& cost, FlipCandidate& out);
-  bool cachedEdgeRemoval(TetId t, VertexId p, VertexId q, const FlipCost& cost, FlipCandidate& out);
+  // With gainOnly, a move whose region the item does not meet (old cost 0, so no gain) is
+  // answered false without building it: the flip search then only looks for strict gains.
+  bool cachedFlip23(TetId t,
+    int f,
+    const FlipCost& cost,
+    FlipCandidate& out,
+    bool gainOnly = false);
+  bool cachedEdgeRemoval(TetId t,
+    VertexId p,
+    VertexId q,
+    const FlipCost& cost,
+    FlipCandidate& out,
+    bool gainOnly = false);
   // Inserts the point (true) and repairs the vertex->tet index.
   bool insertSteiner(const double* c, TetId tet);
 
@@ -394,7 +501,7 @@ private:
   const SurfaceInput& surface_;
   RecoveryOptions options_;
   VertexTetIndex index_;
-  std::unordered_set<std::uint64_t> inputEdges_;
+  std::vector<std::int32_t> edgeStart_; // input edges by their first point (isInputEdge)
   std::vector<std::array<double, 6>> triangleBoxes_;
   std::unique_ptr<InsertionWorkspace, WorkspaceDeleter> workspace_{ createInsertionWorkspace() };
   RecoveryResult result_;
@@ -408,10 +515,47 @@ private:
   std::vector<std::uint64_t> vertexStamp_;
   std::uint64_t clock_ = 0;
   std::vector<Failure> failures_; // edges by index, then triangles after them
-  std::unordered_map<FaceRef, CachedCandidate> flip23Cache_;
+  // Candidates by slot (a face 4t+f, or a tet edge 6t+k), in a pool whose entries keep their
+  // vectors from one flip search to the next (no allocation per candidate).
+  class CandidateCache
+  {
+  public:
+    CachedCandidate& at(std::size_t slot)
+    {
+      if (slot >= slots_.size())
+        slots_.resize(2 * slot + 16, 0);
+      std::uint32_t& index = slots_[slot];
+      if (index == 0)
+      {
+        if (used_ == pool_.size())
+          pool_.emplace_back(); // a deque: references to earlier entries stay valid
+        pool_[used_].clock = 0;
+        index = static_cast<std::uint32_t>(++used_);
+        touched_.push_back(slot);
+      }
+      return pool_[index - 1];
+    }
+    void clear()
+    {
+      for (std::size_t slot : touched_)
+        slots_[slot] = 0;
+      touched_.clear();
+      used_ = 0;
+    }
+
+  private:
+    std::vector<std::uint32_t> slots_; // pool index + 1, or 0
+    std::deque<CachedCandidate> pool_;
+    std::size_t used_ = 0;
+    std::vector<std::size_t> touched_;
+  };
+  CandidateCache flip23Cache_, edgeRemovalCache_;
   std::vector<TetId> shellScratch_, starScratch_;
   ScratchSet<std::array<VertexId, 3>> triedFaces_; // findMoves scratch
   ScratchSet<std::array<VertexId, 2>> triedEdges_;
+  ScratchSet<std::array<VertexId, 2>> edgeScratch_; // shrinkCrossingShell, removeCrossingDeep
+  std::vector<TetId> shellScratch2_;
+  std::vector<VertexId> ringScratch2_;
   std::vector<std::uint32_t> pipeStamp_;
   std::uint32_t pipeEpoch_ = 0;
   struct TetCostEntry
@@ -424,21 +568,24 @@ private:
   std::vector<TetCostEntry> tetCostCache_;
   const FlipCost* tetCostOwner_ = nullptr;
   std::vector<VertexId> ringScratch_;
-  std::unordered_map<std::array<VertexId, 3>, CachedCandidate, TupleHash> edgeRemovalCache_;
+  std::vector<std::shared_ptr<MemoCaches>> memoPool_;
   FlipCost lastSearchCost_; // the memoized measure of the latest flipUntil
-  // Deep removals that failed in the current flip search, by edge, with the vertices whose
-  // shells they examined (a Failure record): tried again only once one of those changed.
-  std::unordered_map<std::uint64_t, Failure> deepFailures_;
+  // Deep removals that failed, by search (an input edge alone: 2e; with its triangles:
+  // 2e+1; a triangle: 2 edges + t) and by edge, with the vertices whose shells they examined
+  // (a Failure record): tried again only once one of those changed, in this flip search or a
+  // later one of the same item and measure (the attempt depends on nothing else).
+  std::unordered_map<std::size_t, std::unordered_map<std::uint64_t, Failure>> deepFailuresBySearch_;
+  std::size_t search_ = 0; // of the current flip search
   // Input edges are never removed (their faces may not be recovered yet).
   DeepEdgeRemoval deep_{ mesh_, index_, [this](VertexId a, VertexId b) {
-                          return inputEdges_.count(edgeKey(a, b)) > 0;
+                          return isInputEdge(a, b);
                         } };
 };
 
-bool Recovery::cachedFlip23(TetId t, int f, const FlipCost& cost, FlipCandidate& out)
+bool Recovery::cachedFlip23(TetId t, int f, const FlipCost& cost, FlipCandidate& out, bool gainOnly)
 {
   // The candidate depends on t's vertices, the neighbour across f and its apex.
-  CachedCandidate& entry = flip23Cache_[makeFaceRef(t, f)];
+  CachedCandidate& entry = flip23Cache_.at(static_cast<std::size_t>(makeFaceRef(t, f)));
   FaceRef n = mesh_.neighbor(t, f);
   ringScratch_.assign(
     &mesh_.tets[4 * static_cast<std::size_t>(t)], &mesh_.tets[4 * static_cast<std::size_t>(t)] + 4);
@@ -449,6 +596,19 @@ bool Recovery::cachedFlip23(TetId t, int f, const FlipCost& cost, FlipCandidate&
     entry.clock = 1;
     entry.shell.assign(1, n);
     entry.ring = ringScratch_;
+    entry.built = false;
+    // The old cost of the flip: the two tets and the face between them.
+    const int* fv = kFaceVertices[f];
+    const VertexId* v = &ringScratch_[0];
+    entry.zeroOldCost = n != kNoNeighbor &&
+      (!cost.tet || (cost.tet(tetVertices(t)) == 0 && cost.tet(tetVertices(faceTet(n))) == 0)) &&
+      (!cost.face || cost.face(v[fv[0]], v[fv[1]], v[fv[2]]) == 0);
+  }
+  if (gainOnly && entry.zeroOldCost)
+    return false;
+  if (!entry.built)
+  {
+    entry.built = true;
     entry.ok = flip23Candidate(mesh_, t, f, cost, entry.candidate);
   }
   if (entry.ok)
@@ -460,19 +620,49 @@ bool Recovery::cachedEdgeRemoval(TetId t,
   VertexId p,
   VertexId q,
   const FlipCost& cost,
-  FlipCandidate& out)
+  FlipCandidate& out,
+  bool gainOnly)
 {
   // The candidate depends only on the shell walked from t (its tet ids, which determine the
   // old tets, and its ring, which determines every tet priced): the same walk, the same
   // answer. Constrained flags do not change during a flip search.
-  CachedCandidate& entry = edgeRemovalCache_[{ t, p, q }];
+  // Slot: t and the pair of local indices of p and q (0..5); the entry names the edge too.
+  static constexpr int kPairSlot[4][4] = {
+    { -1, 0, 1, 2 }, { 0, -1, 3, 4 }, { 1, 3, -1, 5 }, { 2, 4, 5, -1 }
+  };
+  const int ip = localIndex(mesh_, t, p), iq = localIndex(mesh_, t, q);
+  if (ip < 0 || iq < 0 || ip == iq)
+    return false;
+  CachedCandidate& entry =
+    edgeRemovalCache_.at(6 * static_cast<std::size_t>(t) + kPairSlot[ip][iq]);
   bool closed = edgeShell(mesh_, t, p, q, shellScratch_, ringScratch_);
-  if (entry.clock == 0 || shellScratch_ != entry.shell || ringScratch_ != entry.ring)
+  if (entry.clock == 0 || entry.p != p || entry.q != q || shellScratch_ != entry.shell ||
+    ringScratch_ != entry.ring)
   {
     entry.clock = 1;
+    entry.p = p;
+    entry.q = q;
     entry.shell = shellScratch_;
     entry.ring = ringScratch_;
-    entry.ok = closed && edgeRemovalCandidate(mesh_, t, p, q, cost, entry.candidate);
+    entry.built = false;
+    // The old cost of the removal: the edge, its faces and the tets of its shell.
+    bool zero = closed && (!cost.edge || cost.edge(p, q) == 0);
+    for (std::size_t k = 0; k < ringScratch_.size() && zero; ++k)
+      zero = (!cost.face || cost.face(p, q, ringScratch_[k]) == 0) &&
+        (!cost.tet || cost.tet(tetVertices(shellScratch_[k])) == 0);
+    entry.zeroOldCost = zero;
+    if (!closed)
+    {
+      entry.built = true;
+      entry.ok = false;
+    }
+  }
+  if (gainOnly && entry.zeroOldCost)
+    return false;
+  if (!entry.built)
+  {
+    entry.built = true;
+    entry.ok = edgeRemovalCandidate(mesh_, t, p, q, cost, entry.candidate);
   }
   if (entry.ok)
     out = entry.candidate;
@@ -780,20 +970,23 @@ int Recovery::findMoves(VertexId seed,
     for (int f = 0; f < 4; ++f)
     {
       const int* fv = kFaceVertices[f];
-      if (!triedFaces.insert(sortedTriangle(v[fv[0]], v[fv[1]], v[fv[2]])))
+      VertexId a = v[fv[0]], b = v[fv[1]], c = v[fv[2]];
+      sort2(a, b);
+      sort2(b, c);
+      sort2(a, b);
+      if (!triedFaces.insert({ a, b, c }))
         continue;
-      if (cachedFlip23(t, f, cost, candidate))
+      if (cachedFlip23(t, f, cost, candidate, !neutral))
         consider(true);
     }
     for (int i = 0; i < 4; ++i)
     {
       for (int j = i + 1; j < 4; ++j)
       {
-        std::uint64_t key = edgeKey(v[i], v[j]);
-        if (inputEdges_.count(key) ||
+        if (isInputEdge(v[i], v[j]) ||
           !triedEdges.insert({ std::min(v[i], v[j]), std::max(v[i], v[j]) }))
           continue;
-        if (cachedEdgeRemoval(t, v[i], v[j], cost, candidate))
+        if (cachedEdgeRemoval(t, v[i], v[j], cost, candidate, !neutral))
           consider(false);
       }
     }
@@ -826,8 +1019,16 @@ bool Recovery::lookahead(VertexId seed, const FlipCost& cost, std::vector<FlipCa
   {
     const std::vector<TetVertices>& old = oldVertices[m];
     std::vector<TetId> oldTets;
-    for (const TetVertices& v : old)
+    for (std::size_t k = 0; k < old.size(); ++k)
     {
+      const TetVertices& v = old[k];
+      // The same id while no undo has renamed it (a tet is unique by its vertex tuple).
+      const TetId id = neutral[m].oldTets[k];
+      if (!mesh_.isDeleted(id) && tetVertices(id) == v)
+      {
+        oldTets.push_back(id);
+        continue;
+      }
       vertexStar(mesh_, index_, v[0], star);
       for (TetId t : star)
       {
@@ -851,13 +1052,14 @@ bool Recovery::lookahead(VertexId seed, const FlipCost& cost, std::vector<FlipCa
 
 bool Recovery::flipUntil(VertexId seed,
   const ItemCost& exactCost,
-  const std::function<bool()>& done)
+  const std::function<bool()>& done,
+  std::size_t search)
 {
-  const FlipCost cost = memoized(exactCost, mesh_);
+  const FlipCost cost = memoized(exactCost, mesh_, emptyMemo());
   lastSearchCost_ = cost;
   flip23Cache_.clear();
   edgeRemovalCache_.clear();
-  deepFailures_.clear();
+  search_ = search;
   ++tetCostEpoch_; // forget the cached tet costs (in O(1))
   tetCostOwner_ = &cost;
   struct OwnerReset
@@ -875,8 +1077,7 @@ bool Recovery::flipUntil(VertexId seed,
       return false;
     FlipCandidate best;
     bool bestIsFlip23 = false;
-    neutral.clear();
-    if (findMoves(seed, cost, pipe, best, bestIsFlip23, &neutral) > 0)
+    if (findMoves(seed, cost, pipe, best, bestIsFlip23, nullptr) > 0)
     {
       replace(best.oldTets, best.newTets);
       if (bestIsFlip23)
@@ -892,12 +1093,13 @@ bool Recovery::flipUntil(VertexId seed,
     if (removeCrossingDeep(pipe, cost, done, moved))
       continue;
     if (moved)
-    {
-      // The failed attempts were undone, but the tets came back under other ids.
-      neutral.clear();
-      findMoves(seed, cost, pipe, best, bestIsFlip23, &neutral);
-    }
-    if (shrinkCrossingShell(pipe, cost) || lookahead(seed, cost, neutral))
+      collectPipe(seed, cost, pipe); // the attempts were undone, the tets came back renamed
+    if (shrinkCrossingShell(pipe, cost))
+      continue;
+    // The cost-neutral moves, which the search for gains skipped.
+    neutral.clear();
+    findMoves(seed, cost, pipe, best, bestIsFlip23, &neutral);
+    if (lookahead(seed, cost, neutral))
       continue;
     return false;
   }
@@ -908,9 +1110,10 @@ bool Recovery::shrinkCrossingShell(const std::vector<TetId>& pipe, const FlipCos
 {
   FlipCandidate best, candidate;
   bool found = false;
-  std::set<std::uint64_t> triedEdges;
-  std::vector<TetId> shell;
-  std::vector<VertexId> ring;
+  ScratchSet<std::array<VertexId, 2>>& triedEdges = edgeScratch_;
+  triedEdges.clear();
+  std::vector<TetId>& shell = shellScratch2_;
+  std::vector<VertexId>& ring = ringScratch2_;
   for (TetId t : pipe)
   {
     TetVertices v = tetVertices(t);
@@ -918,8 +1121,8 @@ bool Recovery::shrinkCrossingShell(const std::vector<TetId>& pipe, const FlipCos
     {
       for (int j = i + 1; j < 4; ++j)
       {
-        std::uint64_t key = edgeKey(v[i], v[j]);
-        if (inputEdges_.count(key) || !triedEdges.insert(key).second ||
+        if (isInputEdge(v[i], v[j]) ||
+          !triedEdges.insert({ std::min(v[i], v[j]), std::max(v[i], v[j]) }) ||
           cost.edge(v[i], v[j]) == 0 || !edgeShell(mesh_, t, v[i], v[j], shell, ring))
           continue;
         // Face (p,q,ring[k]) separates shell[k-1] from shell[k]; a 2-3 flip of it takes
@@ -956,7 +1159,8 @@ bool Recovery::removeCrossingDeep(const std::vector<TetId>& pipe,
   // per attempt: enough for the wrong diagonal of a planar quad, whose shell has 5-6 tets.
   constexpr int kLevels = 2, kBudget = 32;
   std::vector<std::array<VertexId, 2>> crossing;
-  std::set<std::uint64_t> seen;
+  ScratchSet<std::array<VertexId, 2>>& seen = edgeScratch_;
+  seen.clear();
   for (TetId t : pipe)
   {
     TetVertices v = tetVertices(t);
@@ -964,8 +1168,8 @@ bool Recovery::removeCrossingDeep(const std::vector<TetId>& pipe,
     {
       for (int j = i + 1; j < 4; ++j)
       {
-        if (seen.insert(edgeKey(v[i], v[j])).second && cost.edge(v[i], v[j]) > 0 &&
-          !inputEdges_.count(edgeKey(v[i], v[j])))
+        if (seen.insert({ std::min(v[i], v[j]), std::max(v[i], v[j]) }) &&
+          cost.edge(v[i], v[j]) > 0 && !isInputEdge(v[i], v[j]))
           crossing.push_back({ v[i], v[j] });
       }
     }
@@ -978,9 +1182,13 @@ bool Recovery::removeCrossingDeep(const std::vector<TetId>& pipe,
   deep_.seen = &examined;
   for (const auto& edge : crossing)
   {
-    auto failed = deepFailures_.find(edgeKey(edge[0], edge[1]));
-    if (failed != deepFailures_.end() && unchangedSince(failed->second))
-      continue;
+    const auto failures = deepFailuresBySearch_.find(search_);
+    if (failures != deepFailuresBySearch_.end())
+    {
+      const auto failed = failures->second.find(edgeKey(edge[0], edge[1]));
+      if (failed != failures->second.end() && unchangedSince(failed->second))
+        continue;
+    }
     int budget = kBudget;
     examined.clear();
     const bool removed = deep_.remove(edge[0], edge[1], kLevels, cost, budget);
@@ -1004,7 +1212,7 @@ bool Recovery::removeCrossingDeep(const std::vector<TetId>& pipe,
     deep_.undoTo(0, 0);
     // The attempt was undone (no stamps): it would fail the same way until one of the
     // vertices it examined gets a changed tet.
-    Failure& failure = deepFailures_[edgeKey(edge[0], edge[1])];
+    Failure& failure = deepFailuresBySearch_[search_][edgeKey(edge[0], edge[1])];
     std::sort(examined.begin(), examined.end());
     examined.erase(std::unique(examined.begin(), examined.end()), examined.end());
     failure.vertices = examined;
@@ -1033,7 +1241,7 @@ bool Recovery::onInputSurface(const double* x, double tolerance) const
 
 bool Recovery::insertSteinerNear(VertexId seed, const ItemCost& exactCost)
 {
-  const FlipCost cost = memoized(exactCost, mesh_);
+  const FlipCost cost = memoized(exactCost, mesh_, emptyMemo());
   std::vector<TetId> pipe;
   collectPipe(seed, cost, pipe);
   // Candidate positions, best first. (1) Next to the middle of an edge that cuts the item,
@@ -1275,9 +1483,9 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
     const VertexId a = edges[e][0], b = edges[e][1];
     auto exists = [&] { return edgePresent(e); };
     currentItem_ = edgeName(e);
-    if (flipUntil(a, edgeCost(a, b), exists))
+    if (flipUntil(a, edgeCost(a, b), exists, 2 * e))
       return true;
-    if (!interrupted_ && flipUntil(a, edgeAndFacesCost(e), exists))
+    if (!interrupted_ && flipUntil(a, edgeAndFacesCost(e), exists, 2 * e + 1))
       return true;
     if (!interrupted_)
       recordFailure(failures_[e], a, lastSearchCost_);
@@ -1334,7 +1542,7 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
           face = findFace(mesh_, index_, t[0], t[1], t[2]);
           return face >= 0;
         };
-        if (!flipUntil(t[0], faceCost(t), exists) && !interrupted_)
+        if (!flipUntil(t[0], faceCost(t), exists, 2 * edges.size() + i) && !interrupted_)
           recordFailure(failures_[edges.size() + i], t[0], lastSearchCost_);
         if (interrupted_)
           return result_;

@@ -1,5 +1,6 @@
 #include "DeepEdgeRemoval.h"
 
+#include "FilteredPredicates.h"
 #include "Predicates.h"
 
 #include <algorithm>
@@ -74,7 +75,8 @@ bool DeepEdgeRemoval::remove(VertexId p, VertexId q, int level, const FlipCost& 
   FlipCandidate move, best;
   auto positive = [this](VertexId a, VertexId b, VertexId c, VertexId d)
   {
-    return predicates::orient3d(mesh_.point(a), mesh_.point(b), mesh_.point(c), mesh_.point(d)) > 0;
+    return predicates::orient3dFiltered(
+             mesh_.point(a), mesh_.point(b), mesh_.point(c), mesh_.point(d)) > 0;
   };
   auto fixed = [this](VertexId a, VertexId b) { return fixedEdge_ && fixedEdge_(a, b); };
   while (budget > 0)

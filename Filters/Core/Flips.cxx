@@ -1,5 +1,6 @@
 #include "Flips.h"
 
+#include "FilteredPredicates.h"
 #include "Predicates.h"
 
 #include <algorithm>
@@ -34,7 +35,7 @@ bool positive(const TetMesh& mesh, const TetVertices& t)
     if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k])
       return false;
   }
-  return predicates::orient3d(a, b, c, d) > 0;
+  return predicates::orient3dFiltered(a, b, c, d) > 0;
 }
 
 TetVertices tetOf(const TetMesh& mesh, TetId t)
@@ -182,7 +183,10 @@ bool edgeRemovalCandidate(const TetMesh& mesh,
           c += sub.cost + pricePair(a, b);
           qual = std::min(qual, sub.quality);
         }
-        if (c < 0)
+        // Costs are non-negative: a split already dearer than the best one cannot win, so it
+        // is dropped before its orientation tests (the same choice, fewer predicates).
+        const Score& current = at(i, k);
+        if (c < 0 || (current.valid() && c > current.cost))
           continue;
         TetVertices upper = { ring[i], ring[j], ring[k], q };
         TetVertices lower = { ring[j], ring[i], ring[k], p };
@@ -190,8 +194,10 @@ bool edgeRemovalCandidate(const TetMesh& mesh,
           continue;
         c += priceTet(cost, upper) + priceTet(cost, lower) +
           priceFace(cost, ring[i], ring[j], ring[k]);
+        if (current.valid() && c > current.cost)
+          continue; // shapes only break ties
         qual = std::min({ qual, tetShape(mesh, upper), tetShape(mesh, lower) });
-        if (better(c, qual, at(i, k)))
+        if (better(c, qual, current))
           at(i, k) = { c, qual, j };
       }
     }

@@ -40,33 +40,10 @@ TetId VertexTetIndex::tetOf(const TetMesh& mesh, VertexId v)
   return vertexTet_[v];
 }
 
-void VertexTetIndex::startVisit()
+void VertexTetIndex::resetStamps()
 {
-  if (++epoch_ == 0)
-  {
-    std::fill(stamp_.begin(), stamp_.end(), 0u);
-    epoch_ = 1;
-  }
-}
-
-bool VertexTetIndex::visit(TetId t)
-{
-  if (static_cast<std::size_t>(t) >= stamp_.size())
-    stamp_.resize(2 * static_cast<std::size_t>(t) + 16, 0u);
-  if (stamp_[t] == epoch_)
-    return false;
-  stamp_[t] = epoch_;
-  return true;
-}
-
-int localIndex(const TetMesh& mesh, TetId t, VertexId v)
-{
-  for (int i = 0; i < 4; ++i)
-  {
-    if (mesh.vertex(t, i) == v)
-      return i;
-  }
-  return -1;
+  std::fill(stamp_.begin(), stamp_.end(), 0u);
+  epoch_ = 1;
 }
 
 void vertexStar(const TetMesh& mesh, VertexTetIndex& index, VertexId v, std::vector<TetId>& star)
@@ -233,11 +210,20 @@ void replaceTets(TetMesh& mesh,
   };
   auto sortedKey = [](VertexId a, VertexId b, VertexId c)
   {
-    std::array<VertexId, 3> k = { a, b, c };
-    std::sort(k.begin(), k.end());
-    return k;
+    if (b < a)
+      std::swap(a, b);
+    if (c < b)
+      std::swap(b, c);
+    if (b < a)
+      std::swap(a, b);
+    return std::array<VertexId, 3>{ a, b, c };
   };
-  std::vector<BoundaryFace> boundary;
+  // Element-wise (std::array's == becomes a memcmp call here, the hot spot of this loop).
+  auto same = [](const std::array<VertexId, 3>& x, const std::array<VertexId, 3>& y)
+  { return x[0] == y[0] && x[1] == y[1] && x[2] == y[2]; };
+  // Scratch kept between calls: recovery and optimisation call this for every move.
+  thread_local std::vector<BoundaryFace> boundary;
+  boundary.clear();
   for (TetId t : oldTets)
   {
     for (int f = 0; f < 4; ++f)
@@ -262,7 +248,8 @@ void replaceTets(TetMesh& mesh,
     TetId tet;
     int face;
   };
-  std::vector<OpenFace> open;
+  thread_local std::vector<OpenFace> open;
+  open.clear();
   for (const TetVertices& v : newTets)
   {
     TetId t = mesh.addTet(v[0], v[1], v[2], v[3]);
@@ -274,7 +261,7 @@ void replaceTets(TetMesh& mesh,
       const int* fv = kFaceVertices[f];
       auto key = sortedKey(v[fv[0]], v[fv[1]], v[fv[2]]);
       auto b = std::find_if(
-        boundary.begin(), boundary.end(), [&](const BoundaryFace& x) { return x.key == key; });
+        boundary.begin(), boundary.end(), [&](const BoundaryFace& x) { return same(x.key, key); });
       if (b != boundary.end())
       {
         if (b->outside == kNoNeighbor)
@@ -285,7 +272,7 @@ void replaceTets(TetMesh& mesh,
         continue;
       }
       auto o =
-        std::find_if(open.begin(), open.end(), [&](const OpenFace& x) { return x.key == key; });
+        std::find_if(open.begin(), open.end(), [&](const OpenFace& x) { return same(x.key, key); });
       if (o != open.end())
       {
         mesh.glue(t, f, o->tet, o->face);

@@ -24,19 +24,37 @@ public:
   TetId tetOf(const TetMesh& mesh, VertexId v);
   void note(TetId t, const TetMesh& mesh);
 
-  // Visit marks for one traversal at a time (stamps, so starting one is O(1)).
-  void startVisit();
+  // Visit marks for one traversal at a time (stamps, so starting one is O(1)). Inline: the
+  // flip searches walk stars and shells all the time.
+  void startVisit()
+  {
+    if (++epoch_ == 0)
+      resetStamps();
+  }
   // True the first time t is visited in the current traversal.
-  bool visit(TetId t);
+  bool visit(TetId t)
+  {
+    if (static_cast<std::size_t>(t) >= stamp_.size())
+      stamp_.resize(2 * static_cast<std::size_t>(t) + 16, 0u);
+    if (stamp_[t] == epoch_)
+      return false;
+    stamp_[t] = epoch_;
+    return true;
+  }
 
 private:
+  void resetStamps();
   std::vector<TetId> vertexTet_;
   std::vector<std::uint32_t> stamp_;
   std::uint32_t epoch_ = 0;
 };
 
 // Local index (0..3) of v in tet t, or -1.
-int localIndex(const TetMesh& mesh, TetId t, VertexId v);
+inline int localIndex(const TetMesh& mesh, TetId t, VertexId v)
+{
+  const VertexId* tet = &mesh.tets[4 * static_cast<std::size_t>(t)];
+  return tet[0] == v ? 0 : tet[1] == v ? 1 : tet[2] == v ? 2 : tet[3] == v ? 3 : -1;
+}
 
 // All live tets incident to v (empty when v is in no tet).
 void vertexStar(const TetMesh& mesh, VertexTetIndex& index, VertexId v, std::vector<TetId>& star);

@@ -339,6 +339,55 @@ inline int decodeLattice(int code)
   return code - 2;
 }
 
+// An expansion of the two-product x*y (at most 2 components, zeros dropped).
+int productExpansion(double x, double y, double* h)
+{
+  double p, e;
+  twoProduct(x, y, p, e);
+  int n = 0;
+  if (e != 0.0)
+    h[n++] = e;
+  if (p != 0.0)
+    h[n++] = p;
+  return n;
+}
+
+// x1*y2 - x2*y1 exactly (at most 4 components).
+int minorExpansion(double x1, double y2, double x2, double y1, double* h)
+{
+  double left[2], right[2];
+  const int nl = productExpansion(x1, y2, left), nr = productExpansion(x2, y1, right);
+  return diffExpansions(nl, left, nr, right, h);
+}
+
+// Fourth stage, when every coordinate difference is exact in double (nearby points, as on the
+// planar faces of CAD parts, where the exact zeros are): the determinant in expansions on
+// the stack, two-products for the minors (4 components), scaled (8) and summed (24), without
+// the arena. 2 when a difference is not exact, else the sign.
+int orient3dOfExactDifferences(const double* a, const double* b, const double* c, const double* d)
+{
+  double m[3][3];
+  const double* const rows[3] = { a, b, c };
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k)
+    {
+      double tail;
+      twoDiff(rows[i][k], d[k], m[i][k], tail);
+      if (tail != 0.0)
+        return 2;
+    }
+  // adz*(bdx*cdy - cdx*bdy) + bdz*(cdx*ady - adx*cdy) + cdz*(adx*bdy - bdx*ady)
+  double minor[4], t1[8], t2[8], t3[8], t12[16], all[24];
+  int n = minorExpansion(m[1][0], m[2][1], m[2][0], m[1][1], minor);
+  const int n1 = scaleExpansion(n, minor, m[0][2], t1);
+  n = minorExpansion(m[2][0], m[0][1], m[0][0], m[2][1], minor);
+  const int n2 = scaleExpansion(n, minor, m[1][2], t2);
+  n = minorExpansion(m[0][0], m[1][1], m[1][0], m[0][1], minor);
+  const int n3 = scaleExpansion(n, minor, m[2][2], t3);
+  const int n12 = sumExpansions(n1, t1, n2, t2, t12);
+  return expansionSign(sumExpansions(n12, t12, n3, t3, all), all);
+}
+
 } // namespace
 
 int orient3dExact(const double* a, const double* b, const double* c, const double* d)
@@ -351,6 +400,8 @@ int orient3dExact(const double* a, const double* b, const double* c, const doubl
     if (s != 0)
       return s;
   }
+  if (const int s = orient3dOfExactDifferences(a, b, c, d); s != 2)
+    return s;
   Arena& ar = arena();
   ar.reset();
   const Exp adx = difference(ar, a[0], d[0]), bdx = difference(ar, b[0], d[0]),
@@ -422,6 +473,19 @@ int insphereExact(const double* a,
 
 int orient2dExact(double ax, double ay, double bx, double by, double cx, double cy)
 {
+  {
+    // Exact differences (the common case): the minor by two-products, on the stack.
+    double acx, acy, bcx, bcy, t1, t2, t3, t4;
+    twoDiff(ax, cx, acx, t1);
+    twoDiff(ay, cy, acy, t2);
+    twoDiff(bx, cx, bcx, t3);
+    twoDiff(by, cy, bcy, t4);
+    if (t1 == 0.0 && t2 == 0.0 && t3 == 0.0 && t4 == 0.0)
+    {
+      double minor[4];
+      return expansionSign(minorExpansion(acx, bcy, acy, bcx, minor), minor);
+    }
+  }
   Arena& ar = arena();
   ar.reset();
   const Exp acx = difference(ar, ax, cx), bcx = difference(ar, bx, cx);

@@ -1,5 +1,6 @@
 #include "RecoveryGeometry.h"
 
+#include "FilteredPredicates.h"
 #include "Predicates.h"
 
 #include <algorithm>
@@ -26,7 +27,7 @@ int orient3d(const double* a, const double* b, const double* c, const double* d)
     if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k])
       return 0;
   }
-  return predicates::orient3d(a, b, c, d);
+  return predicates::orient3dFiltered(a, b, c, d);
 }
 
 // A coordinate axis whose projection keeps the triangle abc non-degenerate, or -1 when a, b, c
@@ -95,7 +96,137 @@ bool segmentsCross(const double* a, const double* b, const double* p, const doub
   return properCross2D(a, b, p, q, axis);
 }
 
+namespace
+{
+// Sign of n_f . (x - t[i]) for the face f of the positive tet t through its vertex t[i]
+// (f != i), n_f pointing inwards: orient3d of t with t[f] replaced by x.
+int insideFace(const double* const t[4], int f, const double* x)
+{
+  const double* q[4] = { t[0], t[1], t[2], t[3] };
+  q[f] = x;
+  return orient3d(q[0], q[1], q[2], q[3]);
+}
+
+// The open segment (t[i], b) meets the open tet iff b is strictly inside the three faces
+// through t[i]: along the segment their signs are those of b scaled by the parameter, and the
+// opposite face is positive near t[i].
+bool segmentFromVertexMeetsTet(const double* const t[4], int i, const double* b)
+{
+  for (int f = 0; f < 4; ++f)
+  {
+    if (f != i && insideFace(t, f, b) <= 0)
+      return false;
+  }
+  return true;
+}
+
+// The open segment ab meets the open tet (any position): the point (1-s) a + s b is inside
+// face f iff (1-s) A_f + s B_f > 0, with A_f, B_f the signed distances of a and b. A face
+// with A_f, B_f <= 0 excludes the segment; A_f < 0 < B_f bounds s from below by the crossing
+// with plane f, A_f > 0 > B_f from above; the others do not constrain. A lower bound from f
+// is below an upper one from g iff A_g B_f - A_f B_g > 0, which is (n_g x n_f).((a-e0) x
+// (b-e0)) (Binet-Cauchy; e0, e1: the edge shared by faces f and g, along n_g x n_f): the sign
+// of -det(t[f]-e0, t[g]-e0, e1-e0) det(a-e0, b-e0, e1-e0) (calibrated on a = t[f], b = t[g],
+// where the expression is -A_f B_g < 0). All signs exact.
+bool segmentMeetsTet(const double* const t[4], const double* a, const double* b)
+{
+  int lower[4], upper[4];
+  int lowerCount = 0, upperCount = 0;
+  for (int f = 0; f < 4; ++f)
+  {
+    const int sa = insideFace(t, f, a), sb = insideFace(t, f, b);
+    if (sa <= 0 && sb <= 0)
+      return false;
+    if (sa < 0 && sb > 0)
+      lower[lowerCount++] = f;
+    else if (sa > 0 && sb < 0)
+      upper[upperCount++] = f;
+  }
+  for (int l = 0; l < lowerCount; ++l)
+  {
+    for (int u = 0; u < upperCount; ++u)
+    {
+      const int f = lower[l], g = upper[u];
+      int edge[2], n = 0;
+      for (int k = 0; k < 4; ++k)
+      {
+        if (k != f && k != g)
+          edge[n++] = k;
+      }
+      const double *e0 = t[edge[0]], *e1 = t[edge[1]];
+      if (orient3d(t[f], t[g], e1, e0) * orient3d(a, b, e1, e0) >= 0)
+        return false;
+    }
+  }
+  return true;
+}
+
+// The open triangle (a = t[i], b, c) meets the open tet iff its open wedge at a meets the open
+// cone of the tet at a (both sets are those cones near a, and lie inside them). A point
+// a + r (b - a) + (c - a), r > 0, is inside face f iff r A_f + B_f > 0 with A_f = n_f.(b-a),
+// B_f = n_f.(c-a): a constraint r > -B_f/A_f (A_f > 0 > B_f), r < -B_f/A_f (A_f < 0 < B_f),
+// none (both >= 0, one > 0), or no r at all (both <= 0). A lower bound from f is below an
+// upper one from g iff A_f B_g - A_g B_f > 0, and that is (n_f x n_g).((b-a) x (c-a)) by
+// Binet-Cauchy, with n_f x n_g along the edge (a, t[m]) shared by the two faces: its sign is
+// that of det(t[f]-a, t[g]-a, t[m]-a) det(b-a, c-a, t[m]-a) (the first factor calibrates the
+// direction: for b = t[f], c = t[g] the expression is A_f B_g > 0). All signs exact.
+bool triangleFromVertexMeetsTet(const double* const t[4], int i, const double* b, const double* c)
+{
+  int lower[3], upper[3];
+  int lowerCount = 0, upperCount = 0;
+  for (int f = 0; f < 4; ++f)
+  {
+    if (f == i)
+      continue;
+    const int sb = insideFace(t, f, b), sc = insideFace(t, f, c);
+    if (sb <= 0 && sc <= 0)
+      return false;
+    if (sb > 0 && sc < 0)
+      lower[lowerCount++] = f;
+    else if (sb < 0 && sc > 0)
+      upper[upperCount++] = f;
+  }
+  const double* a = t[i];
+  for (int l = 0; l < lowerCount; ++l)
+  {
+    for (int u = 0; u < upperCount; ++u)
+    {
+      const int f = lower[l], g = upper[u], m = 6 - i - f - g;
+      const int calibration = orient3d(t[f], t[g], t[m], a);
+      const int side = orient3d(b, c, t[m], a);
+      if (calibration * side <= 0)
+        return false;
+    }
+  }
+  return true;
+}
+} // namespace
+
 bool simplexMeetsTetInterior(const double* const* points, int count, const double* const t[4])
+{
+  // A simplex with a vertex of the tet (the usual case: a missing item's pipe grows from the
+  // star of its first vertex) is decided at that vertex by a few orientations, any segment by
+  // its crossings with the face planes. Vertices are compared by pointer, as the mesh passes
+  // them.
+  for (int end = 0; end < count; ++end)
+  {
+    for (int i = 0; i < 4; ++i)
+    {
+      if (points[end] != t[i])
+        continue;
+      if (count == 2)
+        return segmentFromVertexMeetsTet(t, i, points[1 - end]);
+      return triangleFromVertexMeetsTet(t, i, points[(end + 1) % 3], points[(end + 2) % 3]);
+    }
+  }
+  if (count == 2)
+    return segmentMeetsTet(t, points[0], points[1]);
+  return simplexMeetsTetInteriorBySeparation(points, count, t);
+}
+
+bool simplexMeetsTetInteriorBySeparation(const double* const* points,
+  int count,
+  const double* const t[4])
 {
   // Disjoint bounding boxes separate the sets (exact comparisons).
   for (int k = 0; k < 3; ++k)

@@ -23,8 +23,14 @@ bool segmentMeetsTriangle(const double* a,
 bool segmentsCross(const double* a, const double* b, const double* p, const double* q);
 
 // The relative interior of the convex hull of `count` points (2: a segment, 3: a triangle)
-// meets the interior of the non-degenerate tetrahedron t[0..3].
+// meets the interior of the positively oriented tetrahedron t[0..3] (as the mesh's are).
+// Points equal to a tet vertex must be passed as the same pointer (mesh coordinates).
 bool simplexMeetsTetInterior(const double* const* points, int count, const double* const t[4]);
+// The same by the general search for a separating plane (slower; simplexMeetsTetInterior
+// decides a simplex sharing a vertex with the tet by orientations at that vertex). For tests.
+bool simplexMeetsTetInteriorBySeparation(const double* const* points,
+  int count,
+  const double* const t[4]);
 
 // Point x lies on the closed triangle pqr (coplanar and inside or on its edges).
 bool pointOnTriangle(const double* x, const double* p, const double* q, const double* r);

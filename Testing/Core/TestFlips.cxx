@@ -11,7 +11,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
+#include <random>
 
 using namespace tetmesher;
 
@@ -241,6 +243,69 @@ TEST(RecoveryGeometry, SegmentAndTriangle)
   // Through a triangle edge exactly: not the relative interior.
   const double e[3] = { 0.5, 0, 1 }, g[3] = { 0.5, 0, -1 };
   EXPECT_FALSE(geometry::segmentMeetsTriangle(e, g, p, q, r));
+}
+
+TEST(RecoveryGeometry, SimplexInTetAgreesWithSeparation)
+{
+  // Segments and triangles with a vertex of the tet are decided by orientations at that
+  // vertex, other segments by their crossings with the face planes: the same answers as the
+  // separating-plane search, on small integer coordinates (many coplanar and collinear
+  // configurations) and on random ones.
+  std::mt19937 rng(12345);
+  int meets[2] = { 0, 0 }; // per simplex kind: both answers must occur often
+  int missed[2] = { 0, 0 };
+  for (int trial = 0; trial < 400000; ++trial)
+  {
+    const bool lattice = (trial / 2) % 2 == 0;
+    std::uniform_int_distribution<int> cell(-2, 2);
+    std::uniform_real_distribution<double> any(-1.0, 1.0);
+    double p[7][3];
+    for (auto& x : p)
+      for (double& c : x)
+        c = lattice ? cell(rng) : any(rng);
+    const double* t[4] = { p[0], p[1], p[2], p[3] };
+    const int orientation = predicates::orient3d(t[0], t[1], t[2], t[3]);
+    if (orientation == 0)
+      continue;
+    if (orientation < 0)
+      std::swap(t[0], t[1]);
+    // A simplex from a tet vertex (every other segment: from anywhere); its other vertices
+    // are new points or other tet vertices.
+    const int count = 2 + trial % 2;
+    const double* simplex[3] = { t[rng() % 4], p[4], p[5] };
+    if (count == 2 && (trial / 4) % 2 == 0)
+      simplex[0] = p[6];
+    if (rng() % 4 == 0)
+      simplex[1] = t[rng() % 4];
+    if (count == 3 && rng() % 4 == 0)
+      simplex[2] = t[rng() % 4];
+    std::shuffle(simplex, simplex + count, rng);
+    const bool distinct = simplex[0] != simplex[1] &&
+      (count == 2 || (simplex[0] != simplex[2] && simplex[1] != simplex[2]));
+    const bool flat = count == 2
+      ? (simplex[0][0] == simplex[1][0] && simplex[0][1] == simplex[1][1] &&
+          simplex[0][2] == simplex[1][2])
+      : (predicates::orient2d(simplex[0], simplex[1], simplex[2], 0) == 0 &&
+          predicates::orient2d(simplex[0], simplex[1], simplex[2], 1) == 0 &&
+          predicates::orient2d(simplex[0], simplex[1], simplex[2], 2) == 0);
+    if (!distinct || flat)
+      continue;
+    // A point in the relative interior of a tet edge or face is not a valid mesh input.
+    const bool answer = geometry::simplexMeetsTetInterior(simplex, count, t);
+    ASSERT_EQ(answer, geometry::simplexMeetsTetInteriorBySeparation(simplex, count, t))
+      << "trial " << trial;
+    ++(answer ? meets : missed)[count - 2];
+  }
+  for (int kind = 0; kind < 2; ++kind)
+  {
+    EXPECT_GT(meets[kind], 5000) << kind;
+    EXPECT_GT(missed[kind], 5000) << kind;
+  }
+  std::printf("segments %d meet, %d miss; triangles %d meet, %d miss\n",
+    meets[0],
+    missed[0],
+    meets[1],
+    missed[1]);
 }
 
 TEST(RecoveryGeometry, SegmentsCrossAndSimplexInTet)
