@@ -11,9 +11,12 @@ namespace tetmesher
 
 namespace
 {
-// A face whose reach spans more cells than this (a face far larger than the median reach) is
-// read by every query instead, so that neither building nor querying depends on its extent.
-constexpr double kMaxCellsPerFace = 512;
+// A face whose reach's box spans more cells than this (a face far larger than the median
+// reach, e.g. a spike of a fuzzed surface) is read by every query instead, so that neither
+// building nor querying depends on its extent. Within it, a face is listed only in the cells
+// its reach actually meets: long thin CAD triangles cross many cells (couplingdown at 0.4 of
+// its edge sizes: 243 of 3714 faces were read by every query with a listing by boxes).
+constexpr double kMaxCellsPerFace = 1 << 14;
 } // namespace
 
 BoundarySizeFloor::BoundarySizeFloor(const double* points,
@@ -92,25 +95,39 @@ BoundarySizeFloor::BoundarySizeFloor(const double* points,
       large_.push_back(static_cast<std::int32_t>(id));
       continue;
     }
+    const double halfDiagonal = 0.5 * std::sqrt(3.0) * cell_;
     for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
       for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
         for (std::int64_t k = c0[2]; k <= c1[2]; ++k)
         {
-          // The face's floor over the cell is at most its size less the slope times the
-          // distance between the cell and the face's box.
+          // The face's floor over the cell is at most its size less the slope times a lower
+          // bound of the distance from the cell to the face: the distance between the cell
+          // and the face's box, and the distance from the cell's centre to the face (or its
+          // plane, cheaper, first) less the cell's half diagonal.
           const std::int64_t c[3] = { i, j, k };
-          double gap2 = 0;
+          double gap2 = 0, centre[3];
           for (int a = 0; a < 3; ++a)
           {
             const double cellLo = origin_[a] + static_cast<double>(c[a]) * cell_;
+            centre[a] = cellLo + 0.5 * cell_;
             const double d = std::max({ cellLo - f.box[3 + a], f.box[a] - (cellLo + cell_), 0.0 });
             gap2 += d * d;
           }
-          // Rounding of the cell's corners: the bound is only used to stop early, so it is
-          // widened by a relative 1e-9 rather than proven.
-          const double bound = f.size - slope_ * std::sqrt(gap2) * (1 - 1e-9);
-          if (bound > 0)
-            cells_[key(i, j, k)].push_back({ bound, static_cast<std::int32_t>(id) });
+          const double plane = std::fabs(f.normal[0] * centre[0] + f.normal[1] * centre[1] +
+                                 f.normal[2] * centre[2] - f.offset) -
+            halfDiagonal;
+          double gap = std::max(std::sqrt(gap2), plane);
+          if (gap < f.reach)
+            gap = std::max(gap,
+              std::sqrt(geometry::pointTriangleDistanceSquared(
+                centre, f.corner, f.corner + 3, f.corner + 6)) -
+                halfDiagonal);
+          // Beyond the reach the face adds nothing to the cell. The bound is only used to
+          // stop early, so it is widened by a relative 1e-9 for rounding rather than proven.
+          if (!(gap < f.reach))
+            continue;
+          const double bound = f.size - slope_ * std::max(gap, 0.0) * (1 - 1e-9);
+          cells_[key(i, j, k)].push_back({ bound, static_cast<std::int32_t>(id) });
         }
   }
   for (auto& [cellKey, entries] : cells_)
