@@ -2,6 +2,7 @@
 
 #include "DeepEdgeRemoval.h"
 #include "Delaunay.h"
+#include "EpochHashTable.h"
 #include "Flips.h"
 #include "MeshTopology.h"
 #include "Predicates.h"
@@ -77,79 +78,28 @@ inline PackedKey tetMemoKey(const TetVertices& t)
   return { pack(a, b), pack(c, d) };
 }
 
-// Open-addressing map from a sorted vertex tuple to a small int (the memo of one flip
-// search): one allocation per growth instead of one per entry, and cleared in O(1) by an
-// epoch, so that later searches reuse its slots.
-class FlatMemo
+struct PackedKeyHash
 {
-public:
-  // The cached value of k (values are non-negative counts), or -1.
-  int find(const PackedKey& k) const
+  std::size_t operator()(const PackedKey& k) const
   {
-    if (slots_.empty())
-      return -1;
-    std::size_t mask = slots_.size() - 1;
-    for (std::size_t i = hash(k) & mask;; i = (i + 1) & mask)
-    {
-      if (slots_[i].epoch != epoch_)
-        return -1;
-      if (slots_[i].key == k)
-        return slots_[i].value;
-    }
-  }
-  void store(const PackedKey& k, int value)
-  {
-    if (2 * (size_ + 1) > slots_.size())
-    {
-      std::vector<Slot> old(std::max<std::size_t>(64, 2 * slots_.size()));
-      old.swap(slots_);
-      const std::uint32_t live = epoch_;
-      epoch_ = 1;
-      size_ = 0;
-      for (const Slot& s : old)
-      {
-        if (s.epoch == live)
-          insert(s.key, s.value);
-      }
-    }
-    insert(k, value);
-  }
-  void clear()
-  {
-    size_ = 0;
-    if (++epoch_ == 0)
-    {
-      for (Slot& slot : slots_)
-        slot.epoch = 0;
-      epoch_ = 1;
-    }
-  }
-
-private:
-  struct Slot
-  {
-    PackedKey key = { 0, 0 };
-    int value = 0;
-    std::uint32_t epoch = 0; // live when equal to epoch_
-  };
-  static std::size_t hash(const PackedKey& k)
-  {
-    std::uint64_t h = k.hi * 0x9e3779b97f4a7c15ull ^ k.lo * 0xc2b2ae3d27d4eb4full;
+    const std::uint64_t h = k.hi * 0x9e3779b97f4a7c15ull ^ k.lo * 0xc2b2ae3d27d4eb4full;
     return static_cast<std::size_t>(h ^ (h >> 31));
   }
-  void insert(const PackedKey& k, int value)
-  {
-    std::size_t mask = slots_.size() - 1;
-    std::size_t i = hash(k) & mask;
-    while (slots_[i].epoch == epoch_)
-      i = (i + 1) & mask;
-    slots_[i] = { k, value, epoch_ };
-    ++size_;
-  }
-  std::vector<Slot> slots_;
-  std::size_t size_ = 0;
-  std::uint32_t epoch_ = 1;
 };
+
+// The memo of one flip search: a sorted vertex tuple to its (non-negative) count.
+using FlatMemo = EpochHashTable<PackedKey, int, PackedKeyHash>;
+
+// The value of `key` in `memo`, computed by `compute` the first time.
+template<typename Compute>
+int memoize(FlatMemo& memo, const PackedKey& key, Compute&& compute)
+{
+  if (const int* cached = memo.find(key))
+    return *cached;
+  const int value = compute();
+  memo.insert(key, value);
+  return value;
+}
 
 // The memos of one measure (tets, faces, edges).
 struct MemoCaches
@@ -188,64 +138,9 @@ bool separatedFromBox(const TetMesh& mesh,
   return false;
 }
 
-// Open-addressing set of vertex tuples for the scratch of one flip search step: cleared in
-// O(1) by an epoch, its slots kept between steps (no allocation per element).
+// Set of vertex tuples for the scratch of one flip search step.
 template<typename Key>
-class ScratchSet
-{
-public:
-  void clear()
-  {
-    size_ = 0;
-    if (++epoch_ == 0)
-    {
-      for (Slot& slot : slots_)
-        slot.epoch = 0;
-      epoch_ = 1;
-    }
-  }
-  // True when k was not in the set (and is now).
-  bool insert(const Key& k)
-  {
-    if (2 * (size_ + 1) > slots_.size())
-      grow();
-    std::size_t mask = slots_.size() - 1;
-    for (std::size_t i = TupleHash()(k) & mask;; i = (i + 1) & mask)
-    {
-      if (slots_[i].epoch != epoch_)
-      {
-        slots_[i] = { k, epoch_ };
-        ++size_;
-        return true;
-      }
-      if (slots_[i].key == k)
-        return false;
-    }
-  }
-
-private:
-  struct Slot
-  {
-    Key key;
-    std::uint32_t epoch = 0;
-  };
-  void grow()
-  {
-    std::vector<Slot> old(std::max<std::size_t>(64, 2 * slots_.size()));
-    old.swap(slots_);
-    std::uint32_t liveEpoch = epoch_;
-    epoch_ = 1;
-    size_ = 0;
-    for (const Slot& slot : old)
-    {
-      if (slot.epoch == liveEpoch && liveEpoch != 0)
-        insert(slot.key);
-    }
-  }
-  std::vector<Slot> slots_;
-  std::size_t size_ = 0;
-  std::uint32_t epoch_ = 1;
-};
+using ScratchSet = EpochHashTable<Key, std::uint8_t, TupleHash>;
 
 // The same measure, each exact test run once per (unordered) tet, face or edge: a flip search
 // prices the same entities again and again (every move rescans its pipe, every edge removal
@@ -266,42 +161,21 @@ FlipCost memoized(const ItemCost& base, const TetMesh& mesh, std::shared_ptr<Mem
     {
       if (separatedFromBox(*m, box, t, true))
         return 0;
-      const PackedKey k = tetMemoKey(t);
-      int value = tets->find(k);
-      if (value < 0)
-      {
-        value = f(t);
-        tets->store(k, value);
-      }
-      return value;
+      return memoize(*tets, tetMemoKey(t), [&] { return f(t); });
     };
   if (base.face)
     c.face = [caches, faces, f = base.face, m, box](VertexId x, VertexId y, VertexId z)
     {
       if (separatedFromBox(*m, box, std::array<VertexId, 3>{ x, y, z }, false))
         return 0;
-      const PackedKey k = faceMemoKey(x, y, z);
-      int value = faces->find(k);
-      if (value < 0)
-      {
-        value = f(x, y, z);
-        faces->store(k, value);
-      }
-      return value;
+      return memoize(*faces, faceMemoKey(x, y, z), [&] { return f(x, y, z); });
     };
   if (base.edge)
     c.edge = [caches, edges, f = base.edge, m, box](VertexId u, VertexId v)
     {
       if (separatedFromBox(*m, box, std::array<VertexId, 2>{ u, v }, false))
         return 0;
-      const PackedKey k = edgeMemoKey(u, v);
-      int value = edges->find(k);
-      if (value < 0)
-      {
-        value = f(u, v);
-        edges->store(k, value);
-      }
-      return value;
+      return memoize(*edges, edgeMemoKey(u, v), [&] { return f(u, v); });
     };
   return c;
 }
