@@ -12,16 +12,6 @@ namespace
 {
 constexpr std::int32_t kLeafFaces = 4;
 
-double boxDistance(const double* box, const double* p)
-{
-  double d2 = 0;
-  for (int a = 0; a < 3; ++a)
-  {
-    const double d = std::max({ box[a] - p[a], p[a] - box[3 + a], 0.0 });
-    d2 += d * d;
-  }
-  return std::sqrt(d2);
-}
 } // namespace
 
 BoundarySizeCeiling::BoundarySizeCeiling(const double* points,
@@ -125,14 +115,14 @@ double BoundarySizeCeiling::at(const double* p, double atMost) const
   while (top > 0)
   {
     const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
-    if (!(node.minSize + slope_ * boxDistance(node.box, p) < best))
+    if (!(node.minSize + slope_ * geometry::pointBoxDistance(p, node.box) < best))
       continue;
     if (node.count > 0)
     {
       for (std::int32_t i = node.first; i < node.first + node.count; ++i)
       {
         const Face& f = faces_[static_cast<std::size_t>(i)];
-        if (!(f.size + slope_ * boxDistance(f.box, p) < best))
+        if (!(f.size + slope_ * geometry::pointBoxDistance(p, f.box) < best))
           continue;
         const double d = std::sqrt(
           geometry::pointTriangleDistanceSquared(p, f.corner, f.corner + 3, f.corner + 6));
@@ -143,7 +133,8 @@ double BoundarySizeCeiling::at(const double* p, double atMost) const
     // The nearer child last on the stack, so it is visited first and tightens the bound.
     const Node& l = nodes_[static_cast<std::size_t>(node.left)];
     const Node& r = nodes_[static_cast<std::size_t>(node.right)];
-    const bool leftNearer = boxDistance(l.box, p) <= boxDistance(r.box, p);
+    const bool leftNearer =
+      geometry::pointBoxDistance(p, l.box) <= geometry::pointBoxDistance(p, r.box);
     if (top + 2 > 128)
       continue; // deeper than any balanced tree of 2^31 faces; cannot happen
     stack[top++] = leftNearer ? node.right : node.left;

@@ -163,15 +163,9 @@ void BoundarySizeFloor::consider(const Face& f, const double* p, double& best) c
 {
   // The distances to the face's box and to its plane bound the distance to the face from
   // below (the plane's less a relative 1e-9 for rounding): most faces stop here.
-  double boxDistance2 = 0;
-  for (int a = 0; a < 3; ++a)
-  {
-    const double d = std::max({ f.box[a] - p[a], p[a] - f.box[3 + a], 0.0 });
-    boxDistance2 += d * d;
-  }
   const double planeDistance =
     std::fabs(f.normal[0] * p[0] + f.normal[1] * p[1] + f.normal[2] * p[2] - f.offset);
-  const double lower = std::max(std::sqrt(boxDistance2), planeDistance * (1 - 1e-9));
+  const double lower = std::max(geometry::pointBoxDistance(p, f.box), planeDistance * (1 - 1e-9));
   if (!(f.size - slope_ * lower > best))
     return;
   const double d =

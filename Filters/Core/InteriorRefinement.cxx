@@ -271,15 +271,14 @@ public:
   {
     auto faceIsNear = [&](std::int32_t id)
     {
-      const double r = limit;
       // Bounding box first: most faces of a cell are farther than the limit.
       const double* box = &boxes_[6 * static_cast<std::size_t>(id)];
-      if (p[0] < box[0] - r || p[0] > box[3] + r || p[1] < box[1] - r || p[1] > box[4] + r ||
-        p[2] < box[2] - r || p[2] > box[5] + r)
-        return false;
+      for (int a = 0; a < 3; ++a)
+        if (p[a] < box[a] - limit || p[a] > box[3 + a] + limit)
+          return false;
       const VertexId* v = &corners_[3 * static_cast<std::size_t>(id)];
       return geometry::pointTriangleDistanceSquared(
-               p, mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2])) < r * r;
+               p, mesh.point(v[0]), mesh.point(v[1]), mesh.point(v[2])) < limit * limit;
     };
     for (std::int32_t id : large_)
       if (faceIsNear(id))

@@ -78,6 +78,17 @@ double segmentDistanceSquared(const double* p, const double* q, const double* r,
 // Ericson, Real-Time Collision Detection 5.1.5: the Voronoi region of the closest feature
 // from six dot products, without the three segment distances (the refinement asks this for
 // every candidate point near the boundary).
+double pointBoxDistance(const double* x, const double* box)
+{
+  double d2 = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double d = std::max({ box[a] - x[a], x[a] - box[3 + a], 0.0 });
+    d2 += d * d;
+  }
+  return std::sqrt(d2);
+}
+
 double pointTriangleDistanceSquared(const double* x,
   const double* a,
   const double* b,

@@ -1,11 +1,15 @@
-// Distances between triangles in floating point, for reporting only (how close two input
-// triangles come, in a message); no topological decision is made from them.
+// Distances between points, boxes and triangles in floating point, for reporting (how close two
+// input triangles come, in a message) and for sizes (the refinement's boundary size limits); no
+// topological decision is made from them.
 #pragma once
 
 namespace tetmesher
 {
 namespace geometry
 {
+
+// Distance from x to the axis-aligned box (min x, y, z, max x, y, z); 0 inside.
+double pointBoxDistance(const double* x, const double* box);
 
 // Squared distance from x to the closed triangle (a,b,c); for a degenerate triangle, to its
 // longest edge.
