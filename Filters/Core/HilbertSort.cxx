@@ -108,39 +108,102 @@ struct SplitMix64
 
 } // namespace
 
+namespace
+{
+
+struct Keyed
+{
+  std::uint64_t key;
+  VertexId id;
+};
+
+// Least-significant-digit radix sort on the low `keyBits` bits of the keys, 12 bits per
+// pass (4096 counters, which stay in L1): a comparison sort of a million keys was most of
+// the ordering's time. Stable, so equal keys keep their order in `items`.
+void radixSortByKey(std::vector<Keyed>& items, std::vector<Keyed>& scratch, int keyBits)
+{
+  constexpr int kDigitBits = 12;
+  constexpr std::size_t kBuckets = std::size_t(1) << kDigitBits;
+  scratch.resize(items.size());
+  std::vector<std::size_t> count(kBuckets);
+  for (int shift = 0; shift < keyBits; shift += kDigitBits)
+  {
+    std::fill(count.begin(), count.end(), 0);
+    for (const Keyed& k : items)
+      ++count[(k.key >> shift) & (kBuckets - 1)];
+    std::size_t offset = 0;
+    for (std::size_t& c : count)
+    {
+      const std::size_t n = c;
+      c = offset;
+      offset += n;
+    }
+    for (const Keyed& k : items)
+      scratch[count[(k.key >> shift) & (kBuckets - 1)]++] = k;
+    items.swap(scratch);
+  }
+}
+
+} // namespace
+
 void hilbertSort(const double* coords, VertexId* first, VertexId* last)
 {
   // 16 levels (2^48 cells) separate any realistic point count; fewer levels, faster keys.
   constexpr int kBits = 16;
   if (last - first < 2)
     return;
-  const Box box = boundingGrid(coords, first, last, kBits);
-  struct Keyed
-  {
-    std::uint64_t key;
-    VertexId id;
-  };
-  std::vector<Keyed> keyed;
-  keyed.reserve(static_cast<std::size_t>(last - first));
+  const std::size_t count = static_cast<std::size_t>(last - first);
+  // One gather of the coordinates (the ids come shuffled, so every read is a cache miss),
+  // then the box and the keys read the copy in order.
+  std::vector<double> gathered;
+  gathered.reserve(3 * count);
+  adviseHugePages(gathered);
+  gathered.resize(3 * count);
+  for (std::size_t i = 0; i < count; ++i)
+    for (int k = 0; k < 3; ++k)
+      gathered[3 * i + k] = coords[3 * static_cast<std::size_t>(first[i]) + k];
+  std::vector<VertexId> local(count);
+  for (std::size_t i = 0; i < count; ++i)
+    local[i] = static_cast<VertexId>(i);
+  const Box box = boundingGrid(gathered.data(), local.data(), local.data() + count, kBits);
+
+  std::vector<Keyed> keyed, scratch;
+  keyed.reserve(count);
   adviseHugePages(keyed);
-  keyed.resize(static_cast<std::size_t>(last - first));
+  keyed.resize(count);
   const double maxCell = std::ldexp(1.0, kBits) - 1.0;
-  for (std::size_t i = 0; i < keyed.size(); ++i)
+  for (std::size_t i = 0; i < count; ++i)
   {
-    const VertexId v = first[i];
     std::uint32_t g[3];
     for (int k = 0; k < 3; ++k)
     {
-      const double c = (coords[3 * static_cast<std::size_t>(v) + k] - box.lo[k]) * box.scale;
+      const double c = (gathered[3 * i + k] - box.lo[k]) * box.scale;
       g[k] = static_cast<std::uint32_t>(std::min(c, maxCell));
     }
-    keyed[i] = { hilbertIndex(g[0], g[1], g[2], kBits), v };
+    keyed[i] = { hilbertIndex(g[0], g[1], g[2], kBits), first[i] };
   }
-  std::sort(keyed.begin(),
-    keyed.end(),
-    [](const Keyed& a, const Keyed& b)
-    { return a.key < b.key || (a.key == b.key && a.id < b.id); });
-  for (std::size_t i = 0; i < keyed.size(); ++i)
+  const auto byKeyThenId = [](const Keyed& a, const Keyed& b)
+  { return a.key < b.key || (a.key == b.key && a.id < b.id); };
+  if (count < 1024)
+    std::sort(keyed.begin(), keyed.end(), byKeyThenId);
+  else
+  {
+    radixSortByKey(keyed, scratch, 3 * kBits);
+    // Equal keys (duplicate or nearly coincident points) are ordered by id, as the
+    // comparison sort would: find the runs and sort each.
+    for (std::size_t i = 0; i + 1 < count;)
+    {
+      std::size_t j = i + 1;
+      while (j < count && keyed[j].key == keyed[i].key)
+        ++j;
+      if (j - i > 1)
+        std::sort(keyed.begin() + static_cast<std::ptrdiff_t>(i),
+          keyed.begin() + static_cast<std::ptrdiff_t>(j),
+          byKeyThenId);
+      i = j;
+    }
+  }
+  for (std::size_t i = 0; i < count; ++i)
     first[i] = keyed[i].id;
 }
 
