@@ -19,8 +19,10 @@ namespace optimization
 WorstOf worstOfStar(const Context& ctx, const std::vector<TetId>& star, bool& valid);
 
 // Least improvement of the ball's worst score (in [0,1]) for which smoothVertex moves a
-// vertex (1e-8 of Q or of the dihedral angle / 70.5 degrees): below it, rounding noise.
-constexpr double kMinSmoothingGain = 1e-8;
+// vertex (1e-6 of Q or of the dihedral angle / 70.5 degrees, i.e. 7e-5 degrees). At 1e-8,
+// 36k of the 39k moves of fandisk's dihedral stage (h = 0.02066) gained under 1e-6, each
+// requeueing its ball: 0.92 s of optimisation, 0.18 s now, with the same minima.
+constexpr double kMinSmoothingGain = 1e-6;
 
 // Moves free vertex v when that improves its ball's worst score by kMinSmoothingGain at
 // least (see above). `star` is scratch space. Returns true when the vertex moved.
