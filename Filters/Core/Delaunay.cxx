@@ -72,6 +72,15 @@ struct InsertionWorkspace
   std::vector<BoundaryFace> boundary;
   std::vector<EdgeSlot> edgeTable = std::vector<EdgeSlot>(512, EdgeSlot{ 0, -1, -1, 0 });
   std::uint32_t edgeStamp = 0;
+  // Fast mode's gluing by local vertex numbers: each boundary vertex of the cavity gets a
+  // number below kMaxLocal (vertexTag: insertion epoch << 8 | number), and the directed edge
+  // (i, j) its cone face at localEdges[i * kMaxLocal + j]. Cavities with more boundary
+  // vertices use edgeTable.
+  static constexpr int kMaxLocal = 64;
+  std::vector<std::uint32_t> vertexTag;
+  std::uint32_t tagEpoch = 0;
+  std::vector<std::uint8_t> faceLocal; // 3 per boundary face
+  std::vector<FaceRef> localEdges = std::vector<FaceRef>(kMaxLocal * kMaxLocal);
   std::vector<std::uint32_t> vertexStamp; // checked mode only
   std::uint32_t stamp = 0;
   std::uint64_t rng = kWalkSeed;
@@ -478,6 +487,39 @@ TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
 
   if (!Checked && ws.cone.size() < faceCount)
     ws.cone.resize(2 * faceCount);
+  // Fast mode: number the boundary vertices (see InsertionWorkspace::localEdges).
+  bool local = false;
+  if (!Checked)
+  {
+    constexpr int kMaxLocal = InsertionWorkspace::kMaxLocal;
+    if (ws.vertexTag.size() < static_cast<std::size_t>(mesh.vertexCount()))
+      ws.vertexTag.resize(static_cast<std::size_t>(mesh.vertexCount()), 0);
+    if (++ws.tagEpoch == (1u << 24))
+    {
+      std::fill(ws.vertexTag.begin(), ws.vertexTag.end(), 0);
+      ws.tagEpoch = 1;
+    }
+    if (ws.faceLocal.size() < 3 * faceCount)
+      ws.faceLocal.resize(6 * faceCount);
+    const std::uint32_t epoch = ws.tagEpoch << 8;
+    int count = 0;
+    local = true;
+    for (std::size_t i = 0; i < faceCount && local; ++i)
+      for (int e = 0; e < 3; ++e)
+      {
+        std::uint32_t& tag = ws.vertexTag[static_cast<std::size_t>(ws.boundary[i].v[e])];
+        if ((tag & ~0xFFu) != epoch)
+        {
+          if (count == kMaxLocal)
+          {
+            local = false;
+            break;
+          }
+          tag = epoch | static_cast<std::uint32_t>(count++);
+        }
+        ws.faceLocal[3 * i + e] = static_cast<std::uint8_t>(tag & 0xFFu);
+      }
+  }
   // Face of the new tet (a,b,c,v) that contains edge (from,to) of the boundary triangle.
   constexpr int kEdgeFace[3] = { 2, 0, 1 }; // edges ab, bc, ca
   TetId lastTet = -1;
@@ -512,6 +554,14 @@ TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
       // all are stored first and looked up second: no "first or second visit" branch, which
       // is a coin flip per edge and mispredicted half the time.
       ws.cone[i] = t;
+      if (local)
+      {
+        const std::uint8_t* l = &ws.faceLocal[3 * i];
+        for (int e = 0; e < 3; ++e)
+          ws.localEdges[l[e] * InsertionWorkspace::kMaxLocal + l[(e + 1) % 3]] =
+            makeFaceRef(t, kEdgeFace[e]);
+        continue;
+      }
       for (int e = 0; e < 3; ++e)
       {
         const VertexId from = bf.v[e], to = bf.v[(e + 1) % 3];
@@ -547,7 +597,17 @@ TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
       }
     }
   }
-  if (!Checked)
+  if (!Checked && local)
+    for (std::size_t i = 0; i < faceCount; ++i)
+    {
+      // The neighbouring cone tet holds the same edge in the opposite direction.
+      const std::uint8_t* l = &ws.faceLocal[3 * i];
+      const std::size_t base = 4 * static_cast<std::size_t>(ws.cone[i]);
+      for (int e = 0; e < 3; ++e)
+        mesh.neighbors[base + kEdgeFace[e]] =
+          ws.localEdges[l[(e + 1) % 3] * InsertionWorkspace::kMaxLocal + l[e]];
+    }
+  else if (!Checked)
     for (std::size_t i = 0; i < faceCount; ++i)
     {
       const InsertionWorkspace::BoundaryFace& bf = ws.boundary[i];

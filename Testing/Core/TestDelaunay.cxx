@@ -119,6 +119,24 @@ TEST(Delaunay, PointsOnASphere)
   buildAndValidate(mesh);
 }
 
+// The centre of many points on a sphere is in the circumsphere of every tet inside it: its
+// cavity has hundreds of boundary vertices, more than the local numbering of the cone's
+// gluing takes, so the edge hash table glues it.
+TEST(Delaunay, HugeCavityAtTheCentreOfASphere)
+{
+  TetMesh mesh;
+  std::mt19937_64 gen(5);
+  std::normal_distribution<double> g;
+  for (int i = 0; i < 400; ++i)
+  {
+    double x = g(gen), y = g(gen), z = g(gen);
+    double r = std::sqrt(x * x + y * y + z * z);
+    mesh.addVertex(x / r, y / r, z / r);
+  }
+  mesh.addVertex(0, 0, 0);
+  buildAndValidate(mesh);
+}
+
 TEST(Delaunay, ClusteredPoints)
 {
   TetMesh mesh;
