@@ -28,6 +28,21 @@ TetMesh randomPoints(int n, unsigned seed, double lo = 0, double hi = 1)
   return mesh;
 }
 
+// n points uniformly spread on the unit sphere (rounded: nearly, not exactly, co-spherical).
+TetMesh pointsOnUnitSphere(int n, unsigned seed)
+{
+  TetMesh mesh;
+  std::mt19937_64 gen(seed);
+  std::normal_distribution<double> g;
+  for (int i = 0; i < n; ++i)
+  {
+    double x = g(gen), y = g(gen), z = g(gen);
+    double r = std::sqrt(x * x + y * y + z * z);
+    mesh.addVertex(x / r, y / r, z / r);
+  }
+  return mesh;
+}
+
 TetMesh gridPoints(int m)
 {
   TetMesh mesh;
@@ -101,15 +116,7 @@ TEST(Delaunay, GridIsValidAndFillsTheCube)
 
 TEST(Delaunay, PointsOnASphere)
 {
-  TetMesh mesh;
-  std::mt19937_64 gen(3);
-  std::normal_distribution<double> g;
-  for (int i = 0; i < 20000; ++i)
-  {
-    double x = g(gen), y = g(gen), z = g(gen);
-    double r = std::sqrt(x * x + y * y + z * z);
-    mesh.addVertex(x / r, y / r, z / r);
-  }
+  TetMesh mesh = pointsOnUnitSphere(20000, 3);
   // Exactly cospherical too: integer points on x^2+y^2+z^2 = 25*16.
   for (int x = -20; x <= 20; ++x)
     for (int y = -20; y <= 20; ++y)
@@ -124,15 +131,7 @@ TEST(Delaunay, PointsOnASphere)
 // gluing takes, so the edge hash table glues it.
 TEST(Delaunay, HugeCavityAtTheCentreOfASphere)
 {
-  TetMesh mesh;
-  std::mt19937_64 gen(5);
-  std::normal_distribution<double> g;
-  for (int i = 0; i < 400; ++i)
-  {
-    double x = g(gen), y = g(gen), z = g(gen);
-    double r = std::sqrt(x * x + y * y + z * z);
-    mesh.addVertex(x / r, y / r, z / r);
-  }
+  TetMesh mesh = pointsOnUnitSphere(400, 5);
   mesh.addVertex(0, 0, 0);
   buildAndValidate(mesh);
 }
