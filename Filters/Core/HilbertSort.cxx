@@ -67,7 +67,8 @@ struct Box
   double lo[3], scale;
 };
 
-Box boundingGrid(const double* coords, const VertexId* first, const VertexId* last, int bits)
+// The grid over `count` points stored contiguously (xyz each).
+Box boundingGrid(const double* xyz, std::size_t count, int bits)
 {
   Box box;
   double hi[3];
@@ -76,10 +77,10 @@ Box boundingGrid(const double* coords, const VertexId* first, const VertexId* la
     box.lo[k] = std::numeric_limits<double>::max();
     hi[k] = std::numeric_limits<double>::lowest();
   }
-  for (const VertexId* v = first; v != last; ++v)
+  for (std::size_t i = 0; i < count; ++i)
     for (int k = 0; k < 3; ++k)
     {
-      const double c = coords[3 * static_cast<std::size_t>(*v) + k];
+      const double c = xyz[3 * i + k];
       box.lo[k] = std::min(box.lo[k], c);
       hi[k] = std::max(hi[k], c);
     }
@@ -105,11 +106,6 @@ struct SplitMix64
     return z ^ (z >> 31);
   }
 };
-
-} // namespace
-
-namespace
-{
 
 struct Keyed
 {
@@ -162,10 +158,7 @@ void hilbertSort(const double* coords, VertexId* first, VertexId* last)
   for (std::size_t i = 0; i < count; ++i)
     for (int k = 0; k < 3; ++k)
       gathered[3 * i + k] = coords[3 * static_cast<std::size_t>(first[i]) + k];
-  std::vector<VertexId> local(count);
-  for (std::size_t i = 0; i < count; ++i)
-    local[i] = static_cast<VertexId>(i);
-  const Box box = boundingGrid(gathered.data(), local.data(), local.data() + count, kBits);
+  const Box box = boundingGrid(gathered.data(), count, kBits);
 
   std::vector<Keyed> keyed, scratch;
   keyed.reserve(count);
