@@ -1,8 +1,8 @@
-// `tetmesher mesh` without VTK: .off or .vtp in, .vtu out, the core's whole job
+// `tetmesher mesh` without VTK: .off, binary .stl or .vtp in, .vtu out, the core's whole job
 // (meshSurface, as vtkTetMesher runs it) in between. VTK's ~28 libraries are loaded
 // (libtetmesherVtk.so) only for what this path leaves to them: other formats, a background
-// mesh, polygons to triangulate, triangle strips, a .vtp encoding ReadVtp declines, and
-// --with-vtk.
+// mesh, polygons to triangulate, triangle strips, a .vtp encoding ReadVtp declines, an
+// .stl ReadBinaryStl declines (ASCII), and --with-vtk.
 #include "CommandLine.h"
 #include "MeshOptions.h"
 #include "MeshReport.h"
@@ -92,7 +92,7 @@ int RunMesh(int argc, char* argv[])
     return usage;
   const std::string inExt = LowerExtension(options.input);
   if (options.withVtk || LowerExtension(options.output) != ".vtu" || !options.background.empty() ||
-    (inExt != ".off" && inExt != ".vtp"))
+    (inExt != ".off" && inExt != ".vtp" && inExt != ".stl"))
     return MeshWithVtk(options);
   return ReportingFileErrors(
     [&]
@@ -102,7 +102,8 @@ int RunMesh(int argc, char* argv[])
       SurfaceData surface;
       if (inExt == ".off")
         surface = ReadOff(options.input);
-      else if (!ReadVtp(options.input, surface))
+      else if (inExt == ".stl" ? !ReadBinaryStl(options.input, surface)
+                               : !ReadVtp(options.input, surface))
         return MeshWithVtk(options);
       std::vector<std::int32_t> triangles;
       std::vector<std::int64_t> cellOfTriangle;

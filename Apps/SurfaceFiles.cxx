@@ -61,6 +61,20 @@ std::string LowerExtension(const std::string& path)
   return ext;
 }
 
+bool ReadWholeFile(const std::string& path, std::string& text)
+{
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file)
+    return false;
+  std::fseek(file, 0, SEEK_END);
+  const long size = std::ftell(file);
+  std::fseek(file, 0, SEEK_SET);
+  text.resize(size > 0 ? static_cast<std::size_t>(size) : 0);
+  const bool ok = size >= 0 && std::fread(&text[0], 1, text.size(), file) == text.size();
+  std::fclose(file);
+  return ok;
+}
+
 TokenFile::TokenFile(const std::string& path)
   : Path(path)
   , Stream(path)
@@ -585,20 +599,6 @@ bool ReadArray(const Encoding& encoding,
   return true;
 }
 
-bool ReadFile(const std::string& path, std::string& text)
-{
-  std::FILE* file = std::fopen(path.c_str(), "rb");
-  if (!file)
-    return false;
-  std::fseek(file, 0, SEEK_END);
-  const long size = std::ftell(file);
-  std::fseek(file, 0, SEEK_SET);
-  text.resize(size > 0 ? static_cast<std::size_t>(size) : 0);
-  const bool ok = size >= 0 && std::fread(&text[0], 1, text.size(), file) == text.size();
-  std::fclose(file);
-  return ok;
-}
-
 bool ParseCount(const Tag& tag, const char* key, std::int64_t& value)
 {
   const std::string* text = tag.Attribute(key);
@@ -616,7 +616,7 @@ bool ParseCount(const Tag& tag, const char* key, std::int64_t& value)
 bool ReadVtp(const std::string& path, SurfaceData& surface)
 {
   std::string text;
-  if (!ReadFile(path, text))
+  if (!ReadWholeFile(path, text))
     return false;
   Encoding encoding;
   encoding.text = &text;

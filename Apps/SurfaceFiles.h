@@ -1,6 +1,6 @@
-// The files of the common `tetmesher mesh` run, without VTK: .off and VTK XML .vtp surfaces
-// in, a VTK XML .vtu (appended raw binary, optionally zlib) out. The .vtp reader takes the
-// encodings VTK writes (ascii, base64 binary, appended raw or base64; zlib or no
+// The files of the common `tetmesher mesh` run, without VTK: .off, binary .stl and VTK XML
+// .vtp surfaces in, a VTK XML .vtu (appended raw binary, optionally zlib) out. The .vtp reader
+// takes the encodings VTK writes (ascii, base64 binary, appended raw or base64; zlib or no
 // compression; little-endian) and declines the rest, which VTK then reads (MeshFiles.cxx).
 #pragma once
 
@@ -32,6 +32,9 @@ void RequireReadableFile(const std::string& path);
 
 // ".vtu" for "a/b.VTU"; "" without an extension.
 std::string LowerExtension(const std::string& path);
+
+// The whole file as bytes; false when it cannot be read.
+bool ReadWholeFile(const std::string& path, std::string& bytes);
 
 // A line-oriented tokenizer that skips '#' comments and knows the line number for errors.
 class TokenFile
@@ -82,6 +85,10 @@ SurfaceData ReadOff(const std::string& path);
 // something this reader does not handle (another compressor, big-endian, several pieces,
 // a malformed part): VTK reads it then, and names any defect.
 bool ReadVtp(const std::string& path, SurfaceData& surface);
+
+// A binary .stl as vtkSTLReader reads it with merging on (StlFile.cxx): false (nothing
+// thrown) for an ASCII file or anything else this reader declines; VTK reads it then.
+bool ReadBinaryStl(const std::string& path, SurfaceData& surface);
 
 // Writes the mesh as vtkXMLUnstructuredGridWriter does for vtkTetMesher's output (appended
 // raw binary; zlib blocks when `compress`). Throws FileError.

@@ -2,8 +2,8 @@
 
 Usage: TestLeanPath.py TETMESHER_EXE CORPUS_DIR TEST_DATA_DIR
 
-For each case the same command runs twice: as it is (the lean path: the core, the own .off/.vtp
-reader and .vtu writer) and with --with-vtk (vtkTetMesher, VTK's readers and writers). Both
+For each case the same command runs twice: as it is (the lean path: the core, the own .off/.vtp/
+binary .stl readers and .vtu writer) and with --with-vtk (vtkTetMesher, VTK's readers and writers). Both
 .vtu files are read back with vtkXMLUnstructuredGridReader and compared exactly: points bit
 for bit, cells, every point, cell and field array with its name, type, components and values
 (MeshingSeconds only by name and type: it is a wall time). stdout must be the same but for the
@@ -131,6 +131,29 @@ def d(name):
     return os.path.join(corpus, name)
 
 
+def write_binary_stl(path, facets, header=b"binary STL written by TestLeanPath", count=None, tail=b""):
+    """facets: triples of (x, y, z) corners; count: the facet count stored in the header."""
+    with open(path, "wb") as f:
+        f.write(header.ljust(80, b"\0"))
+        f.write(struct.pack("<I", len(facets) if count is None else count))
+        for facet in facets:
+            f.write(struct.pack("<3f", 0.0, 0.0, 0.0))
+            for corner in facet:
+                f.write(struct.pack("<3f", *corner))
+            f.write(b"\0\0")
+        f.write(tail)
+
+
+def cube_facets(zero):
+    """The 12 outward triangles of the unit cube; `zero` is the value written for 0."""
+    corners = [(x, y, z) for z in (zero, 1.0) for y in (zero, 1.0) for x in (zero, 1.0)]
+    quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    out = []
+    for a, b, c, e in quads:
+        out += [(corners[a], corners[b], corners[c]), (corners[a], corners[c], corners[e])]
+    return out
+
+
 with tempfile.TemporaryDirectory() as tmp:
     # A surface with a point array of sizes, in a .vtp written by VTK (appended raw).
     reader = vtkXMLPolyDataReader()
@@ -177,7 +200,38 @@ with tempfile.TemporaryDirectory() as tmp:
                           "--memory-limit", "100"])
     case("no such file", ["mesh", d("nosuch.off"), "-o", "OUT", "-q"])
     case("unwritable output", ["mesh", d("star.off"), "-o", os.path.join(tmp, "no-such-dir", "x.vtu"), "-q"])
-    # Polygons to triangulate are left to VTK, as is .stl.
+    # Binary .stl: read as vtkSTLReader with merging reads it (vertices merged when equal, -0
+    # with +0; facets that merge to fewer than 3 points dropped, their points kept; the stored
+    # facet count ignored).
+    case("sphere.stl (binary)", ["mesh", d("sphere.stl"), "-o", "OUT", "-q", "--stats"])
+    case("sphere.stl boundary only", ["mesh", d("sphere.stl"), "-o", "OUT", "-q", "--boundary-only"])
+    cube = cube_facets(0.0)
+    signed = cube_facets(-0.0)
+    mixed = os.path.join(tmp, "cube-signed-zeros.stl")
+    write_binary_stl(mixed, [signed[i] if i % 3 == 0 else cube[i] for i in range(12)], count=7)
+    case("cube.stl with -0 and +0 corners, wrong count", ["mesh", mixed, "-o", "OUT", "-q"])
+    degenerate = os.path.join(tmp, "cube-degenerate-facets.stl")
+    write_binary_stl(degenerate, cube[:5] + [((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (1.0, 0.0, 0.0)),
+                                             ((0.5, 0.5, 2.0), (0.5, 0.5, 2.0), (0.5, 0.5, 2.0))]
+                     + cube[5:])
+    case("cube.stl with degenerate facets", ["mesh", degenerate, "-o", "OUT", "-q"])
+    nan = os.path.join(tmp, "cube-nan.stl")
+    write_binary_stl(nan, cube[:11] + [((float("nan"), 1.0, 1.0), cube[11][1], cube[11][2])])
+    case("cube.stl with a NaN corner", ["mesh", nan, "-o", "OUT", "-q"])
+    # Left to VTK: an ASCII .stl, a binary one with a stray byte, and polygons to triangulate.
+    ascii_stl = os.path.join(tmp, "cube-ascii.stl")
+    with open(ascii_stl, "w") as f:
+        f.write("solid cube\n")
+        for facet in cube:
+            f.write(" facet normal 0 0 0\n  outer loop\n")
+            for corner in facet:
+                f.write("   vertex %r %r %r\n" % corner)
+            f.write("  endloop\n endfacet\n")
+        f.write("endsolid cube\n")
+    case("cube.stl, ASCII (VTK path)", ["mesh", ascii_stl, "-o", "OUT", "-q"], expect_lean=False)
+    stray = os.path.join(tmp, "cube-stray-byte.stl")
+    write_binary_stl(stray, cube, tail=b"x")
+    case("cube.stl with a stray byte (VTK path)", ["mesh", stray, "-o", "OUT", "-q"], expect_lean=False)
     case("keyhole polygon (VTK path)", ["mesh", os.path.join(data, "defects", "keyhole-polygon.off"),
                                         "-o", "OUT", "-q"], expect_lean=False)
 
