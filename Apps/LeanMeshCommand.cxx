@@ -1,8 +1,8 @@
-// `tetmesher mesh` without VTK: .off, binary .stl or .vtp in, .vtu out, the core's whole job
+// `tetmesher mesh` without VTK: .off, .stl or .vtp in, .vtu out, the core's whole job
 // (meshSurface, as vtkTetMesher runs it) in between. VTK's ~28 libraries are loaded
 // (libtetmesherVtk.so) only for what this path leaves to them: other formats, a background
 // mesh, polygons to triangulate, triangle strips, a .vtp encoding ReadVtp declines, an
-// .stl ReadBinaryStl declines (ASCII), and --with-vtk.
+// .stl ReadStl declines, and --with-vtk.
 #include "CommandLine.h"
 #include "MeshOptions.h"
 #include "MeshReport.h"
@@ -102,7 +102,7 @@ int RunMesh(int argc, char* argv[])
       SurfaceData surface;
       if (inExt == ".off")
         surface = ReadOff(options.input);
-      else if (inExt == ".stl" ? !ReadBinaryStl(options.input, surface)
+      else if (inExt == ".stl" ? !ReadStl(options.input, surface)
                                : !ReadVtp(options.input, surface))
         return MeshWithVtk(options);
       std::vector<std::int32_t> triangles;

@@ -1,16 +1,20 @@
-// Binary .stl without VTK, giving what vtkSTLReader with merging gives (SurfaceReaders.cxx):
-// the file is binary by kwsys's DetectFileType (5% or more of its first 256 bytes outside
-// printable ASCII, tab, CR and LF); each facet's 3 vertices are floats, merged when they
-// compare equal (as vtkMergePoints does: so -0 and +0 merge, NaN never does), numbered in
-// order of first appearance; a facet whose merged vertices are not 3 distinct points is
-// dropped, its points kept. Anything else (ASCII, a size that is not 84 + 50 n bytes, a
+// .stl without VTK, giving what vtkSTLReader with merging gives (SurfaceReaders.cxx): binary
+// or ASCII by kwsys's DetectFileType (binary when 5% or more of the first 256 bytes are
+// outside printable ASCII, tab, CR and LF); a binary file's facets are read to its end, an
+// ASCII file's by vtkSTLReader's grammar (ParseAscii); each facet's 3 vertices are floats,
+// merged when they compare equal (as vtkMergePoints does: so -0 and +0 merge, NaN never
+// does), numbered in order of first appearance; a facet whose merged vertices are not 3
+// distinct points is dropped, its points kept. Anything else (a binary size that is not
+// 84 + 50 n bytes, an ASCII file VTK would refuse or that its line buffer would split, a
 // big-endian host) is declined and VTK reads it, naming any defect.
 #include "SurfaceFiles.h"
 
+#include <cctype>
 #include <cstdint>
-#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <unordered_map>
+#include <vector>
 
 namespace tetmesher
 {
@@ -67,21 +71,10 @@ struct VertexKeyHash
   }
 };
 
-} // namespace
-
-bool ReadBinaryStl(const std::string& path, SurfaceData& surface)
+// The facets' corners (9 floats per facet, in file order) merged into `surface`.
+void MergeFacets(const std::vector<float>& corners, SurfaceData& surface)
 {
-  std::string bytes;
-  if (!LittleEndianHost() || !ReadWholeFile(path, bytes))
-    return false;
-  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
-  const std::size_t size = bytes.size();
-  constexpr std::size_t kHeader = 84, kFacet = 50;
-  if (!DetectedAsBinary(data, size) || size < kHeader || (size - kHeader) % kFacet != 0)
-    return false;
-  // vtkSTLReader reads facets to the end of the file, whatever the stored count says.
-  const std::size_t facets = (size - kHeader) / kFacet;
-
+  const std::size_t facets = corners.size() / 9;
   surface = SurfaceData();
   surface.points.reserve(3 * facets);
   surface.polygonOffsets.reserve(facets + 1);
@@ -91,12 +84,10 @@ bool ReadBinaryStl(const std::string& path, SurfaceData& surface)
   ids.reserve(facets);
   for (std::size_t f = 0; f < facets; ++f)
   {
-    const unsigned char* facet = data + kHeader + f * kFacet;
     std::int64_t corner[3];
     for (int v = 0; v < 3; ++v)
     {
-      float xyz[3];
-      std::memcpy(xyz, facet + 12 * (v + 1), 12); // after the normal
+      const float* xyz = &corners[9 * f + 3 * static_cast<std::size_t>(v)];
       const std::int64_t next = surface.PointCount();
       std::int64_t id = next;
       if (xyz[0] == xyz[0] && xyz[1] == xyz[1] && xyz[2] == xyz[2]) // no NaN
@@ -105,8 +96,8 @@ bool ReadBinaryStl(const std::string& path, SurfaceData& surface)
         id = ids.emplace(key, next).first->second;
       }
       if (id == next)
-        for (float c : xyz)
-          surface.points.push_back(static_cast<double>(c));
+        for (int k = 0; k < 3; ++k)
+          surface.points.push_back(static_cast<double>(xyz[k]));
       corner[v] = id;
     }
     if (corner[0] != corner[1] && corner[0] != corner[2] && corner[1] != corner[2])
@@ -115,6 +106,137 @@ bool ReadBinaryStl(const std::string& path, SurfaceData& surface)
       surface.polygonOffsets.push_back(static_cast<std::int64_t>(surface.polygonPoints.size()));
     }
   }
+}
+
+bool ParseBinary(const unsigned char* data, std::size_t size, std::vector<float>& corners)
+{
+  constexpr std::size_t kHeader = 84, kFacet = 50;
+  if (!LittleEndianHost() || size < kHeader || (size - kHeader) % kFacet != 0)
+    return false;
+  // vtkSTLReader reads facets to the end of the file, whatever the stored count says.
+  const std::size_t facets = (size - kHeader) / kFacet;
+  corners.resize(9 * facets);
+  for (std::size_t f = 0; f < facets; ++f)
+    std::memcpy(&corners[9 * f], data + kHeader + f * kFacet + 12, 36); // after the normal
+  return true;
+}
+
+// The grammar of vtkSTLReader::ReadASCIISTL: "solid" lines, each followed by facets ("facet
+// ...", "outer ...", three "vertex x y z", "endloop", "endfacet"; "color" lines allowed
+// before a facet) and "endsolid"; blank lines skipped; the first word of a line compared in
+// lower case, the rest of it ignored but the vertex coordinates, read with strtod and
+// rounded to float. It reads the file with fgets into 255 bytes, so a line of 254 or more
+// bytes (or a NUL byte) is declined here rather than imitated; so is any file VTK would
+// refuse, for VTK's message.
+bool ParseAscii(const std::string& text, std::vector<float>& corners)
+{
+  if (text.find('\0') != std::string::npos)
+    return false;
+  enum State
+  {
+    Solid,
+    Facet,
+    Loop,
+    Vertices,
+    EndLoop,
+    EndFacet
+  };
+  State state = Solid;
+  bool anySolid = false;
+  int vertex = 0;
+  std::size_t begin = 0;
+  std::string line; // one line, NUL-terminated as fgets leaves it: strtod stops at its end
+  std::string word;
+  while (begin < text.size())
+  {
+    std::size_t end = text.find('\n', begin);
+    if (end == std::string::npos)
+      end = text.size();
+    if (end - begin >= 254)
+      return false;
+    line.assign(text, begin, end - begin);
+    begin = end + 1;
+    std::size_t at = 0;
+    while (at < line.size() && std::isspace(static_cast<unsigned char>(line[at])))
+      ++at;
+    if (at == line.size())
+      continue;
+    std::size_t wordEnd = at;
+    word.clear();
+    while (wordEnd < line.size() && !std::isspace(static_cast<unsigned char>(line[wordEnd])))
+      word += static_cast<char>(std::tolower(static_cast<unsigned char>(line[wordEnd++])));
+    switch (state)
+    {
+      case Solid:
+        if (word != "solid")
+          return false;
+        anySolid = true;
+        state = Facet;
+        break;
+      case Facet:
+        if (word == "facet")
+          state = Loop;
+        else if (word == "endsolid")
+          state = Solid;
+        else if (word != "color")
+          return false;
+        break;
+      case Loop:
+        if (word != "outer")
+          return false;
+        state = Vertices;
+        break;
+      case Vertices:
+      {
+        if (word != "vertex")
+          return false;
+        const char* from = line.c_str() + wordEnd;
+        for (int k = 0; k < 3; ++k)
+        {
+          char* to = nullptr;
+          const double value = std::strtod(from, &to);
+          if (to == from)
+            return false;
+          corners.push_back(static_cast<float>(value));
+          from = to;
+        }
+        if (++vertex == 3)
+        {
+          vertex = 0;
+          state = EndLoop;
+        }
+        break;
+      }
+      case EndLoop:
+        if (word != "endloop")
+          return false;
+        state = EndFacet;
+        break;
+      case EndFacet:
+        if (word != "endfacet")
+          return false;
+        state = Facet;
+        break;
+    }
+  }
+  return state == Solid && anySolid;
+}
+
+} // namespace
+
+bool ReadStl(const std::string& path, SurfaceData& surface)
+{
+  std::string bytes;
+  if (!ReadWholeFile(path, bytes))
+    return false;
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  std::vector<float> corners;
+  const bool parsed = DetectedAsBinary(data, bytes.size())
+    ? ParseBinary(data, bytes.size(), corners)
+    : ParseAscii(bytes, corners);
+  if (!parsed)
+    return false;
+  MergeFacets(corners, surface);
   return true;
 }
 

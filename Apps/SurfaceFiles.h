@@ -1,5 +1,5 @@
-// The files of the common `tetmesher mesh` run, without VTK: .off, binary .stl and VTK XML
-// .vtp surfaces in, a VTK XML .vtu (appended raw binary, optionally zlib) out. The .vtp reader
+// The files of the common `tetmesher mesh` run, without VTK: .off, .stl and VTK XML .vtp
+// surfaces in, a VTK XML .vtu (appended raw binary, optionally zlib) out. The .vtp reader
 // takes the encodings VTK writes (ascii, base64 binary, appended raw or base64; zlib or no
 // compression; little-endian) and declines the rest, which VTK then reads (MeshFiles.cxx).
 #pragma once
@@ -86,9 +86,9 @@ SurfaceData ReadOff(const std::string& path);
 // a malformed part): VTK reads it then, and names any defect.
 bool ReadVtp(const std::string& path, SurfaceData& surface);
 
-// A binary .stl as vtkSTLReader reads it with merging on (StlFile.cxx): false (nothing
-// thrown) for an ASCII file or anything else this reader declines; VTK reads it then.
-bool ReadBinaryStl(const std::string& path, SurfaceData& surface);
+// An .stl (binary or ASCII) as vtkSTLReader reads it with merging on (StlFile.cxx): false
+// (nothing thrown) for what this reader declines; VTK reads it then.
+bool ReadStl(const std::string& path, SurfaceData& surface);
 
 // Writes the mesh as vtkXMLUnstructuredGridWriter does for vtkTetMesher's output (appended
 // raw binary; zlib blocks when `compress`). Throws FileError.

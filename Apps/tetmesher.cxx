@@ -3,7 +3,7 @@
 //   tetmesher mesh SURFACE -o OUT.vtu [options]
 // Exit status: 0 success, 1 bad input or failure (the message names file and defect),
 // 2 wrong usage.
-// The executable does not link VTK: `mesh` from .off/.vtp/binary .stl to .vtu runs the core
+// The executable does not link VTK: `mesh` from .off/.vtp/.stl to .vtu runs the core
 // directly (LeanMeshCommand.cxx); the rest is in libtetmesherVtk.so, loaded when needed.
 #include "CommandLine.h"
 

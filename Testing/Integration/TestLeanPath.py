@@ -3,7 +3,7 @@
 Usage: TestLeanPath.py TETMESHER_EXE CORPUS_DIR TEST_DATA_DIR
 
 For each case the same command runs twice: as it is (the lean path: the core, the own .off/.vtp/
-binary .stl readers and .vtu writer) and with --with-vtk (vtkTetMesher, VTK's readers and writers). Both
+.stl readers and .vtu writer) and with --with-vtk (vtkTetMesher, VTK's readers and writers). Both
 .vtu files are read back with vtkXMLUnstructuredGridReader and compared exactly: points bit
 for bit, cells, every point, cell and field array with its name, type, components and values
 (MeshingSeconds only by name and type: it is a wall time). stdout must be the same but for the
@@ -200,9 +200,9 @@ with tempfile.TemporaryDirectory() as tmp:
                           "--memory-limit", "100"])
     case("no such file", ["mesh", d("nosuch.off"), "-o", "OUT", "-q"])
     case("unwritable output", ["mesh", d("star.off"), "-o", os.path.join(tmp, "no-such-dir", "x.vtu"), "-q"])
-    # Binary .stl: read as vtkSTLReader with merging reads it (vertices merged when equal, -0
-    # with +0; facets that merge to fewer than 3 points dropped, their points kept; the stored
-    # facet count ignored).
+    # .stl: read as vtkSTLReader with merging reads it (vertices merged when equal, -0 with
+    # +0; facets that merge to fewer than 3 points dropped, their points kept; a binary file's
+    # stored facet count ignored).
     case("sphere.stl (binary)", ["mesh", d("sphere.stl"), "-o", "OUT", "-q", "--stats"])
     case("sphere.stl boundary only", ["mesh", d("sphere.stl"), "-o", "OUT", "-q", "--boundary-only"])
     cube = cube_facets(0.0)
@@ -218,17 +218,42 @@ with tempfile.TemporaryDirectory() as tmp:
     nan = os.path.join(tmp, "cube-nan.stl")
     write_binary_stl(nan, cube[:11] + [((float("nan"), 1.0, 1.0), cube[11][1], cube[11][2])])
     case("cube.stl with a NaN corner", ["mesh", nan, "-o", "OUT", "-q"])
-    # Left to VTK: an ASCII .stl, a binary one with a stray byte, and polygons to triangulate.
-    ascii_stl = os.path.join(tmp, "cube-ascii.stl")
-    with open(ascii_stl, "w") as f:
-        f.write("solid cube\n")
-        for facet in cube:
-            f.write(" facet normal 0 0 0\n  outer loop\n")
-            for corner in facet:
-                f.write("   vertex %r %r %r\n" % corner)
-            f.write("  endloop\n endfacet\n")
-        f.write("endsolid cube\n")
-    case("cube.stl, ASCII (VTK path)", ["mesh", ascii_stl, "-o", "OUT", "-q"], expect_lean=False)
+    # ASCII .stl, by vtkSTLReader's grammar: keywords in any case, CRLF, "color" lines, several
+    # solids, extra numbers after a vertex ignored, -0 merged with +0.
+    def ascii_stl(path, solids, newline="\n", upper=False, extra=""):
+        kw = (lambda w: w.upper()) if upper else (lambda w: w)
+        with open(path, "w", newline="") as f:
+            for name, facets in solids:
+                f.write(kw("solid") + " " + name + newline)
+                f.write("color 0.1 0.2 0.3" + newline)
+                for facet in facets:
+                    f.write(" " + kw("facet") + " normal 0 0 0" + newline + "  " + kw("outer") + " loop" + newline)
+                    for corner in facet:
+                        f.write("   " + kw("vertex") + " %r %r %.17e%s" % (corner[0], corner[1], corner[2], extra) + newline)
+                    f.write("  " + kw("endloop") + newline + " " + kw("endfacet") + newline)
+                f.write(kw("endsolid") + " " + name + newline + newline)
+    plain = os.path.join(tmp, "cube-ascii.stl")
+    ascii_stl(plain, [("cube", cube)])
+    case("cube.stl, ASCII", ["mesh", plain, "-o", "OUT", "-q", "--stats"])
+    dos = os.path.join(tmp, "cube-ascii-crlf.stl")
+    ascii_stl(dos, [("top", signed[:6]), ("bottom", cube[6:])], newline="\r\n", upper=True, extra=" 7")
+    case("cube.stl, ASCII: CRLF, upper case, 2 solids, -0", ["mesh", dos, "-o", "OUT", "-q"])
+    ascii_nan = os.path.join(tmp, "cube-ascii-nan.stl")
+    ascii_stl(ascii_nan, [("cube", cube[:11] + [((float("nan"), 1.0, 1.0), cube[11][1], cube[11][2])])])
+    case("cube.stl, ASCII, a NaN corner", ["mesh", ascii_nan, "-o", "OUT", "-q"])
+    # Left to VTK: an ASCII .stl VTK refuses (no endsolid) or whose line its buffer would split,
+    # a binary one with a stray byte, and polygons to triangulate.
+    unfinished = os.path.join(tmp, "cube-ascii-unfinished.stl")
+    with open(plain) as f:
+        text = f.read()
+    with open(unfinished, "w") as f:
+        f.write(text[:text.rindex("endsolid")])
+    case("cube.stl, ASCII without endsolid (VTK path)", ["mesh", unfinished, "-o", "OUT", "-q"],
+         expect_lean=False)
+    long_line = os.path.join(tmp, "cube-ascii-long-name.stl")
+    ascii_stl(long_line, [("x" * 300, cube)])
+    case("cube.stl, ASCII with a 300-byte name (VTK path)", ["mesh", long_line, "-o", "OUT", "-q"],
+         expect_lean=False)
     stray = os.path.join(tmp, "cube-stray-byte.stl")
     write_binary_stl(stray, cube, tail=b"x")
     case("cube.stl with a stray byte (VTK path)", ["mesh", stray, "-o", "OUT", "-q"], expect_lean=False)
