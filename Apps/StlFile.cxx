@@ -9,10 +9,12 @@
 // big-endian host) is declined and VTK reads it, naming any defect.
 #include "SurfaceFiles.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <iterator>
 #include <unordered_map>
 #include <vector>
 
@@ -141,6 +143,17 @@ bool ParseAscii(const std::string& text, std::vector<float>& corners)
     EndLoop,
     EndFacet
   };
+  // The one-keyword steps: in state `from` the line must start with `word`.
+  struct Step
+  {
+    State from;
+    const char* word;
+    State to;
+  };
+  static constexpr Step kSteps[] = { { Solid, "solid", Facet },
+    { Loop, "outer", Vertices },
+    { EndLoop, "endloop", EndFacet },
+    { EndFacet, "endfacet", Facet } };
   State state = Solid;
   bool anySolid = false;
   int vertex = 0;
@@ -165,58 +178,43 @@ bool ParseAscii(const std::string& text, std::vector<float>& corners)
     word.clear();
     while (wordEnd < line.size() && !std::isspace(static_cast<unsigned char>(line[wordEnd])))
       word += static_cast<char>(std::tolower(static_cast<unsigned char>(line[wordEnd++])));
-    switch (state)
+    if (state == Facet)
     {
-      case Solid:
-        if (word != "solid")
-          return false;
-        anySolid = true;
-        state = Facet;
-        break;
-      case Facet:
-        if (word == "facet")
-          state = Loop;
-        else if (word == "endsolid")
-          state = Solid;
-        else if (word != "color")
-          return false;
-        break;
-      case Loop:
-        if (word != "outer")
-          return false;
-        state = Vertices;
-        break;
-      case Vertices:
+      if (word == "facet")
+        state = Loop;
+      else if (word == "endsolid")
+        state = Solid;
+      else if (word != "color")
+        return false;
+    }
+    else if (state == Vertices)
+    {
+      if (word != "vertex")
+        return false;
+      const char* from = line.c_str() + wordEnd;
+      for (int k = 0; k < 3; ++k)
       {
-        if (word != "vertex")
+        char* to = nullptr;
+        const double value = std::strtod(from, &to);
+        if (to == from)
           return false;
-        const char* from = line.c_str() + wordEnd;
-        for (int k = 0; k < 3; ++k)
-        {
-          char* to = nullptr;
-          const double value = std::strtod(from, &to);
-          if (to == from)
-            return false;
-          corners.push_back(static_cast<float>(value));
-          from = to;
-        }
-        if (++vertex == 3)
-        {
-          vertex = 0;
-          state = EndLoop;
-        }
-        break;
+        corners.push_back(static_cast<float>(value));
+        from = to;
       }
-      case EndLoop:
-        if (word != "endloop")
-          return false;
-        state = EndFacet;
-        break;
-      case EndFacet:
-        if (word != "endfacet")
-          return false;
-        state = Facet;
-        break;
+      if (++vertex == 3)
+      {
+        vertex = 0;
+        state = EndLoop;
+      }
+    }
+    else
+    {
+      const Step* step = std::find_if(
+        std::begin(kSteps), std::end(kSteps), [&](const Step& s) { return s.from == state; });
+      if (word != step->word)
+        return false;
+      anySolid = anySolid || state == Solid;
+      state = step->to;
     }
   }
   return state == Solid && anySolid;
