@@ -11,10 +11,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <iterator>
+#include <limits>
 #include <unordered_map>
 #include <vector>
 
@@ -123,6 +125,20 @@ bool ParseBinary(const unsigned char* data, std::size_t size, std::vector<float>
   return true;
 }
 
+// value rounded to float as the hardware rounds (to nearest, ties to even), beyond FLT_MAX
+// too, where a plain cast is undefined behaviour.
+float RoundToFloat(double value)
+{
+  const double magnitude = std::fabs(value);
+  constexpr double kMax = std::numeric_limits<float>::max();
+  constexpr double kHalfUlpAboveMax = 0x1p103; // FLT_MAX's ulp is 2^104
+  if (magnitude >= kMax + kHalfUlpAboveMax)
+    return static_cast<float>(std::copysign(std::numeric_limits<double>::infinity(), value));
+  if (magnitude > kMax)
+    return static_cast<float>(std::copysign(kMax, value));
+  return static_cast<float>(value);
+}
+
 // The grammar of vtkSTLReader::ReadASCIISTL: "solid" lines, each followed by facets ("facet
 // ...", "outer ...", three "vertex x y z", "endloop", "endfacet"; "color" lines allowed
 // before a facet) and "endsolid"; blank lines skipped; the first word of a line compared in
@@ -198,7 +214,7 @@ bool ParseAscii(const std::string& text, std::vector<float>& corners)
         const double value = std::strtod(from, &to);
         if (to == from)
           return false;
-        corners.push_back(static_cast<float>(value));
+        corners.push_back(RoundToFloat(value));
         from = to;
       }
       if (++vertex == 3)
