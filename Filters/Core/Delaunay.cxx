@@ -11,7 +11,9 @@
 //     boundary face strictly positively and no vertex is enclosed, which is automatic for
 //     a Delaunay mesh but not after boundary recovery has flipped or constrained it.
 //  4. the cavity tets are replaced by the cones (boundary face, p), reusing the cavity's
-//     slots first. Internal faces of the cone are glued through a small edge hash table.
+//     slots first. Internal faces of the cone are glued through a table of their edges:
+//     indexed by local numbers of the boundary vertices (fast mode, up to 64 of them), else
+//     a small hash table.
 //
 // Checked mode (insertVertex) uses scratch flag bits, cleared before returning: kScratchBit0 =
 // tet is in the cavity, kScratchBit1 = tet was tested and is not in the cavity. Fast mode
