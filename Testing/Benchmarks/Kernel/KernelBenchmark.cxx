@@ -4,7 +4,7 @@
 // Every measurement runs in a forked child so that each one's peak RSS (getrusage) is its
 // own. Wall time and CPU time (user + system) are both reported: on a shared machine the CPU
 // time ratios are the steadier ones. Usage: TetMesherKernelBenchmark [--quick] [--no-tetgen]
-// [--no-cgal] [--no-10m]
+// [--no-cgal] [--no-10m] [--only uniform|sphere|grid]
 #include "Delaunay.h"
 
 #ifdef TETMESHER_BENCHMARK_CGAL
@@ -221,10 +221,15 @@ void report(const char* who, const Measurement& m, double points, const Measurem
 int main(int argc, char** argv)
 {
   bool quick = false, tetgen = true, cgal = true, tenMillion = true;
+  std::string only; // --only KIND: that point set alone (uniform, sphere or grid)
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
-    if (a == "--quick")
+    if (a == "--only" && i + 1 < argc &&
+      (std::string(argv[i + 1]) == "uniform" || std::string(argv[i + 1]) == "sphere" ||
+        std::string(argv[i + 1]) == "grid"))
+      only = argv[++i];
+    else if (a == "--quick")
       quick = true;
     else if (a == "--no-tetgen")
       tetgen = false;
@@ -234,7 +239,9 @@ int main(int argc, char** argv)
       tenMillion = false;
     else
     {
-      std::fprintf(stderr, "usage: %s [--quick] [--no-tetgen] [--no-cgal] [--no-10m]\n", argv[0]);
+      std::fprintf(stderr,
+        "usage: %s [--quick] [--no-tetgen] [--no-cgal] [--no-10m] [--only uniform|sphere|grid]\n",
+        argv[0]);
       return 2;
     }
   }
@@ -254,6 +261,8 @@ int main(int argc, char** argv)
   }
   for (const Case& c : cases)
   {
+    if (!only.empty() && c.kind != only)
+      continue;
     const std::vector<double> points = makePoints(c.kind, c.n);
     const double n = static_cast<double>(points.size() / 3);
     std::printf("%s, %.0f points\n", c.kind.c_str(), n);
