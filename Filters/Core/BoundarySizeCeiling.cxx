@@ -28,18 +28,10 @@ BoundarySizeCeiling::BoundarySizeCeiling(const double* points,
     f.size = faceSize[id];
     if (!(f.size > 0) || !std::isfinite(f.size))
       continue;
+    geometry::gatherTriangle(points, &faceCorners[3 * id], f.corner, f.box);
     bool finite = true;
-    for (int k = 0; k < 3; ++k)
-    {
-      const double* x = points + 3 * static_cast<std::size_t>(faceCorners[3 * id + k]);
-      std::copy(x, x + 3, f.corner + 3 * k);
-      for (int a = 0; a < 3; ++a)
-      {
-        finite = finite && std::isfinite(x[a]);
-        f.box[a] = k == 0 ? x[a] : std::min(f.box[a], x[a]);
-        f.box[3 + a] = k == 0 ? x[a] : std::max(f.box[3 + a], x[a]);
-      }
-    }
+    for (double c : f.corner)
+      finite = finite && std::isfinite(c);
     if (finite)
       faces_.push_back(f);
   }

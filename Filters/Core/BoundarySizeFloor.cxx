@@ -37,16 +37,7 @@ BoundarySizeFloor::BoundarySizeFloor(const double* points,
     Face f;
     f.size = s;
     f.reach = (s - base) / slope;
-    for (int k = 0; k < 3; ++k)
-    {
-      const double* x = points + 3 * static_cast<std::size_t>(faceCorners[3 * id + k]);
-      std::copy(x, x + 3, f.corner + 3 * k);
-      for (int a = 0; a < 3; ++a)
-      {
-        f.box[a] = k == 0 ? x[a] : std::min(f.box[a], x[a]);
-        f.box[3 + a] = k == 0 ? x[a] : std::max(f.box[3 + a], x[a]);
-      }
-    }
+    geometry::gatherTriangle(points, &faceCorners[3 * id], f.corner, f.box);
     const double* a = f.corner;
     const double u[3] = { a[3] - a[0], a[4] - a[1], a[5] - a[2] };
     const double v[3] = { a[6] - a[0], a[7] - a[1], a[8] - a[2] };

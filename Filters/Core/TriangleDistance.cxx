@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 
 namespace tetmesher
 {
@@ -87,6 +88,20 @@ double pointBoxDistance(const double* x, const double* box)
     d2 += d * d;
   }
   return std::sqrt(d2);
+}
+
+void gatherTriangle(const double* points, const std::int32_t* ids, double* corner, double* box)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    const double* x = points + 3 * static_cast<std::size_t>(ids[k]);
+    for (int a = 0; a < 3; ++a)
+    {
+      corner[3 * k + a] = x[a];
+      box[a] = k == 0 ? x[a] : std::min(box[a], x[a]);
+      box[3 + a] = k == 0 ? x[a] : std::max(box[3 + a], x[a]);
+    }
+  }
 }
 
 double pointTriangleDistanceSquared(const double* x,

@@ -3,6 +3,8 @@
 // topological decision is made from them.
 #pragma once
 
+#include <cstdint>
+
 namespace tetmesher
 {
 namespace geometry
@@ -10,6 +12,10 @@ namespace geometry
 
 // Distance from x to the axis-aligned box (min x, y, z, max x, y, z); 0 inside.
 double pointBoxDistance(const double* x, const double* box);
+
+// The triangle whose 3 corners are points[ids[0..2]] (xyz per point): their coordinates in
+// `corner` (9 doubles) and their bounding box in `box` (min x, y, z, max x, y, z).
+void gatherTriangle(const double* points, const std::int32_t* ids, double* corner, double* box);
 
 // Squared distance from x to the closed triangle (a,b,c); for a degenerate triangle, to its
 // longest edge.
