@@ -448,6 +448,14 @@ struct SurfaceSizes
 {
   std::vector<std::int32_t> corners; // 3 per face
   std::vector<double> vertexSize;
+
+  // Face id's size: the smallest at its corners.
+  double faceSize(std::size_t id) const
+  {
+    return std::min({ vertexSize[static_cast<std::size_t>(corners[3 * id])],
+      vertexSize[static_cast<std::size_t>(corners[3 * id + 1])],
+      vertexSize[static_cast<std::size_t>(corners[3 * id + 2])] });
+  }
 };
 
 SurfaceSizes surfaceSizes(const TetMesh& mesh,
@@ -503,12 +511,10 @@ BoundarySizeFloor makeBoundarySizeFloor(const TetMesh& mesh,
   std::vector<double> faceSize, faceBase;
   for (std::size_t id = 0; id < surface.corners.size() / 3; ++id)
   {
-    double size = std::numeric_limits<double>::max(), base = size;
+    const double size = surface.faceSize(id);
+    double base = std::numeric_limits<double>::max();
     for (int k = 0; k < 3; ++k)
-    {
-      size = std::min(size, surface.vertexSize[surface.corners[3 * id + k]]);
       base = std::min(base, h[surface.corners[3 * id + k]]);
-    }
     faceSize.push_back(std::min(size - (matched - 1) * base, maxRatio * base));
     faceBase.push_back(base);
   }
@@ -533,10 +539,7 @@ BoundarySizeCeiling makeBoundarySizeCeiling(const TetMesh& mesh,
   std::vector<double> faceSize;
   for (std::size_t id = 0; id < surface.corners.size() / 3; ++id)
   {
-    double size = std::numeric_limits<double>::max();
-    for (int k = 0; k < 3; ++k)
-      size = std::min(size, surface.vertexSize[surface.corners[3 * id + k]]);
-    faceSize.push_back(ratio * size);
+    faceSize.push_back(ratio * surface.faceSize(id));
   }
   return BoundarySizeCeiling(mesh.coords.data(), surface.corners, faceSize, gradation - 1);
 }
