@@ -199,20 +199,17 @@ public:
     , lastPoll_(start_)
   {
     index_.rebuild(mesh_);
-    std::map<std::uint64_t, std::size_t> edgeIndex;
     // The edges are sorted (a < b): those of input point a start at edgeStart_[a].
     edgeStart_.assign(static_cast<std::size_t>(surface_.pointCount) + 1, 0);
     for (const auto& edge : surface_.edges)
       ++edgeStart_[edge[0] + 1];
     for (std::size_t v = 0; v + 1 < edgeStart_.size(); ++v)
       edgeStart_[v + 1] += edgeStart_[v];
-    for (std::size_t e = 0; e < surface_.edges.size(); ++e)
-      edgeIndex.emplace(edgeKey(surface_.edges[e][0], surface_.edges[e][1]), e);
     edgeTriangles_.resize(surface_.edges.size());
     for (const auto& t : surface_.triangles)
     {
       for (int k = 0; k < 3; ++k)
-        edgeTriangles_[edgeIndex.at(edgeKey(t[k], t[(k + 1) % 3]))].push_back(t);
+        edgeTriangles_[inputEdgeIndex(t[k], t[(k + 1) % 3])].push_back(t);
     }
     for (const auto& t : surface_.triangles)
     {
@@ -230,18 +227,32 @@ public:
 
 private:
   const double* point(VertexId v) const { return mesh_.point(v); }
-  bool isInputEdge(VertexId a, VertexId b) const
+  // The index of input edge (a,b) in surface_.edges, or -1.
+  std::int32_t inputEdgeIndex(VertexId a, VertexId b) const
   {
     if (a > b)
       std::swap(a, b);
     if (a < 0 || b >= surface_.pointCount)
-      return false; // Steiner points and the Delaunay box are on no input edge
+      return -1; // Steiner points and the Delaunay box are on no input edge
     for (std::int32_t e = edgeStart_[a]; e < edgeStart_[a + 1]; ++e)
     {
       if (surface_.edges[e][1] == b)
-        return true;
+        return e;
     }
-    return false;
+    return -1;
+  }
+  bool isInputEdge(VertexId a, VertexId b) const { return inputEdgeIndex(a, b) >= 0; }
+  // True when face ref `face` is a live tet's face with the vertices of `tri`.
+  bool faceHolds(FaceRef face, const std::array<VertexId, 3>& tri) const
+  {
+    const TetId t = faceTet(face);
+    if (t >= mesh_.tetCapacity() || mesh_.isDeleted(t))
+      return false;
+    const VertexId apex = mesh_.vertex(t, faceIndex(face));
+    for (VertexId v : tri)
+      if (v == apex || localIndex(mesh_, t, v) < 0)
+        return false;
+    return true;
   }
   TetVertices tetVertices(TetId t) const
   {
@@ -317,6 +328,11 @@ private:
   // point that close is strictly inside by the exact tests but on the surface for any user.
   bool onInputSurface(const double* x, double tolerance) const;
   void markConstrained(FaceRef face);
+  // One pass over the tets: which input edges the mesh has, and a face ref of each input
+  // triangle it has (-1 if none). The Delaunay mesh of the surface points already has most
+  // of them, and a star search per item cost more than the flips on big surfaces (bunny00,
+  // 75k triangles: a fifth of the recovery).
+  void findPresentItems(std::vector<char>& edgeInMesh, std::vector<FaceRef>& triangleFace);
   // True when the time budget is spent or the progress callback asked to abort (polled a
   // few times a second); result_.error then names the item being recovered.
   bool interrupted();
@@ -1321,6 +1337,53 @@ void Recovery::markConstrained(FaceRef face)
     mesh_.setConstrained(faceTet(n), faceIndex(n), true);
 }
 
+void Recovery::findPresentItems(std::vector<char>& edgeInMesh, std::vector<FaceRef>& triangleFace)
+{
+  const auto& triangles = surface_.triangles;
+  const VertexId pointCount = surface_.pointCount;
+  edgeInMesh.assign(surface_.edges.size(), 0);
+  triangleFace.assign(triangles.size(), -1);
+  // The triangles by their smallest vertex, as sorted triples.
+  std::vector<std::int32_t> start(static_cast<std::size_t>(pointCount) + 1, 0);
+  std::vector<std::array<VertexId, 3>> sorted(triangles.size());
+  for (std::size_t i = 0; i < triangles.size(); ++i)
+  {
+    sorted[i] = sortedTriangle(triangles[i][0], triangles[i][1], triangles[i][2]);
+    ++start[sorted[i][0] + 1];
+  }
+  for (std::size_t v = 0; v + 1 < start.size(); ++v)
+    start[v + 1] += start[v];
+  std::vector<std::int32_t> byFirst(triangles.size());
+  {
+    std::vector<std::int32_t> next(start.begin(), start.end() - 1);
+    for (std::size_t i = 0; i < triangles.size(); ++i)
+      byFirst[next[sorted[i][0]]++] = static_cast<std::int32_t>(i);
+  }
+  for (TetId t = 0; t < mesh_.tetCapacity(); ++t)
+  {
+    if (mesh_.isDeleted(t))
+      continue;
+    const TetVertices v = tetVertices(t);
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+      {
+        const std::int32_t e = inputEdgeIndex(v[i], v[j]);
+        if (e >= 0)
+          edgeInMesh[e] = 1;
+      }
+    for (int f = 0; f < 4; ++f)
+    {
+      const int* fv = kFaceVertices[f];
+      const auto face = sortedTriangle(v[fv[0]], v[fv[1]], v[fv[2]]);
+      if (face[2] >= pointCount)
+        continue; // a box corner or a Steiner point
+      for (std::int32_t k = start[face[0]]; k < start[face[0] + 1]; ++k)
+        if (sorted[byFirst[k]] == face)
+          triangleFace[byFirst[k]] = makeFaceRef(t, f);
+    }
+  }
+}
+
 RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
 {
   const auto& triangles = surface_.triangles;
@@ -1332,12 +1395,38 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
   // An edge found at clock c is still there while no tet incident to its first vertex has
   // been created or deleted since (every such change stamps all the tet's vertices).
   std::vector<std::uint64_t> edgeFoundAt(edges.size(), 0);
+  // What the mesh has now: an item is still there while no tet at its first vertex changed
+  // (edges), or while the tet found holds it (triangles). Each item's first look-up then
+  // does what findEdge and findFace do besides searching: index_.tetOf repairs the index
+  // (a rebuild when stale), which decides where later star searches start.
+  std::vector<char> edgeInitially;
+  std::vector<FaceRef> triangleInitially;
+  findPresentItems(edgeInitially, triangleInitially);
+  const std::uint64_t initialClock = clock_;
+  auto unchangedAt = [&](VertexId a, std::uint64_t since)
+  { return static_cast<std::size_t>(a) >= vertexStamp_.size() || vertexStamp_[a] < since; };
+  // Edges of recovered triangles stay: constrained faces are never flipped or swallowed.
+  std::vector<char> edgeSecured(edges.size(), 0);
   auto edgePresent = [&](std::size_t e)
   {
     VertexId a = edges[e][0];
-    if (edgeFoundAt[e] > 0 &&
-      (static_cast<std::size_t>(a) >= vertexStamp_.size() || vertexStamp_[a] < edgeFoundAt[e]))
+    if (edgeSecured[e])
+    {
+      index_.tetOf(mesh_, a);
       return true;
+    }
+    if (edgeFoundAt[e] > 0 && unchangedAt(a, edgeFoundAt[e]))
+      return true;
+    if (edgeInitially[e])
+    {
+      edgeInitially[e] = 0;
+      if (unchangedAt(a, initialClock + 1))
+      {
+        index_.tetOf(mesh_, a);
+        edgeFoundAt[e] = clock_ + 1;
+        return true;
+      }
+    }
     if (findEdge(mesh_, index_, a, edges[e][1]) < 0)
       return false;
     edgeFoundAt[e] = clock_ + 1;
@@ -1404,7 +1493,15 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
       if (recovered[i])
         continue;
       const auto& t = triangles[i];
-      FaceRef face = findFace(mesh_, index_, t[0], t[1], t[2]);
+      FaceRef face = -1;
+      if (triangleInitially[i] >= 0 && faceHolds(triangleInitially[i], t))
+      {
+        index_.tetOf(mesh_, t[0]);
+        face = triangleInitially[i];
+      }
+      else
+        face = findFace(mesh_, index_, t[0], t[1], t[2]);
+      triangleInitially[i] = -1;
       bool edgesPresent = true;
       for (int e = 0; e < 3 && face < 0 && edgesPresent; ++e)
         edgesPresent = findEdge(mesh_, index_, t[e], t[(e + 1) % 3]) >= 0;
@@ -1424,6 +1521,8 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
       if (face >= 0)
       {
         markConstrained(face);
+        for (int k = 0; k < 3; ++k)
+          edgeSecured[inputEdgeIndex(t[k], t[(k + 1) % 3])] = 1;
         recovered[i] = 1;
         ++recoveredCount;
         progressFraction_ = static_cast<double>(recoveredCount) / triangles.size();
