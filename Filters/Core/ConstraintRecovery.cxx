@@ -8,6 +8,7 @@
 #include "Predicates.h"
 #include "RecoveryGeometry.h"
 #include "TriangleDistance.h"
+#include "TriangleIndex.h"
 #include "TriangleIntersection.h"
 
 #include <algorithm>
@@ -1339,26 +1340,10 @@ void Recovery::markConstrained(FaceRef face)
 
 void Recovery::findPresentItems(std::vector<char>& edgeInMesh, std::vector<FaceRef>& triangleFace)
 {
-  const auto& triangles = surface_.triangles;
   const VertexId pointCount = surface_.pointCount;
   edgeInMesh.assign(surface_.edges.size(), 0);
-  triangleFace.assign(triangles.size(), -1);
-  // The triangles by their smallest vertex, as sorted triples.
-  std::vector<std::int32_t> start(static_cast<std::size_t>(pointCount) + 1, 0);
-  std::vector<std::array<VertexId, 3>> sorted(triangles.size());
-  for (std::size_t i = 0; i < triangles.size(); ++i)
-  {
-    sorted[i] = sortedTriangle(triangles[i][0], triangles[i][1], triangles[i][2]);
-    ++start[sorted[i][0] + 1];
-  }
-  for (std::size_t v = 0; v + 1 < start.size(); ++v)
-    start[v + 1] += start[v];
-  std::vector<std::int32_t> byFirst(triangles.size());
-  {
-    std::vector<std::int32_t> next(start.begin(), start.end() - 1);
-    for (std::size_t i = 0; i < triangles.size(); ++i)
-      byFirst[next[sorted[i][0]]++] = static_cast<std::int32_t>(i);
-  }
+  triangleFace.assign(surface_.triangles.size(), -1);
+  const TriangleIndex triangles(surface_.triangles);
   for (TetId t = 0; t < mesh_.tetCapacity(); ++t)
   {
     if (mesh_.isDeleted(t))
@@ -1374,12 +1359,11 @@ void Recovery::findPresentItems(std::vector<char>& edgeInMesh, std::vector<FaceR
     for (int f = 0; f < 4; ++f)
     {
       const int* fv = kFaceVertices[f];
-      const auto face = sortedTriangle(v[fv[0]], v[fv[1]], v[fv[2]]);
-      if (face[2] >= pointCount)
+      if (v[fv[0]] >= pointCount || v[fv[1]] >= pointCount || v[fv[2]] >= pointCount)
         continue; // a box corner or a Steiner point
-      for (std::int32_t k = start[face[0]]; k < start[face[0] + 1]; ++k)
-        if (sorted[byFirst[k]] == face)
-          triangleFace[byFirst[k]] = makeFaceRef(t, f);
+      const std::int32_t i = triangles.find(v[fv[0]], v[fv[1]], v[fv[2]]);
+      if (i >= 0)
+        triangleFace[i] = makeFaceRef(t, f);
     }
   }
 }

@@ -2,7 +2,9 @@
 // curve", AIP Conf. Proc. 707, 2004): undo the per-level rotations/reflections, Gray-code
 // the result, then interleave the bits of the three coordinates from the most significant.
 #include "HilbertSort.h"
+
 #include "HugePages.h"
+#include "RadixSort.h"
 
 #include <algorithm>
 #include <cmath>
@@ -113,33 +115,6 @@ struct Keyed
   VertexId id;
 };
 
-// Least-significant-digit radix sort on the low `keyBits` bits of the keys, 12 bits per
-// pass (4096 counters, which stay in L1): a comparison sort of a million keys was most of
-// the ordering's time. Stable, so equal keys keep their order in `items`.
-void radixSortByKey(std::vector<Keyed>& items, std::vector<Keyed>& scratch, int keyBits)
-{
-  constexpr int kDigitBits = 12;
-  constexpr std::size_t kBuckets = std::size_t(1) << kDigitBits;
-  scratch.resize(items.size());
-  std::vector<std::size_t> count(kBuckets);
-  for (int shift = 0; shift < keyBits; shift += kDigitBits)
-  {
-    std::fill(count.begin(), count.end(), 0);
-    for (const Keyed& k : items)
-      ++count[(k.key >> shift) & (kBuckets - 1)];
-    std::size_t offset = 0;
-    for (std::size_t& c : count)
-    {
-      const std::size_t n = c;
-      c = offset;
-      offset += n;
-    }
-    for (const Keyed& k : items)
-      scratch[count[(k.key >> shift) & (kBuckets - 1)]++] = k;
-    items.swap(scratch);
-  }
-}
-
 } // namespace
 
 void hilbertSort(const double* coords, VertexId* first, VertexId* last)
@@ -181,7 +156,8 @@ void hilbertSort(const double* coords, VertexId* first, VertexId* last)
     std::sort(keyed.begin(), keyed.end(), byKeyThenId);
   else
   {
-    radixSortByKey(keyed, scratch, 3 * kBits);
+    radixSortByKey(
+      keyed, scratch, [](const Keyed& k) { return k.key; }, 3 * kBits);
     // Equal keys (duplicate or nearly coincident points) are ordered by id, as the
     // comparison sort would: find the runs and sort each.
     for (std::size_t i = 0; i + 1 < count;)

@@ -1,5 +1,7 @@
 #include "MeshAssembly.h"
 
+#include "TriangleIndex.h"
+
 #include <algorithm>
 #include <array>
 #include <unordered_map>
@@ -97,16 +99,10 @@ std::vector<std::int32_t> tetFaceTriangles(const std::vector<std::int32_t>& tets
   const std::int32_t* triangles,
   std::int32_t triangleCount)
 {
-  std::unordered_map<std::array<VertexId, 3>, std::int32_t, FaceKeyHash> index;
-  index.reserve(static_cast<std::size_t>(triangleCount));
+  const TriangleIndex index(triangles, triangleCount);
   VertexId maxVertex = -1;
-  for (std::int32_t i = 0; i < triangleCount; ++i)
-  {
-    std::array<VertexId, 3> key{ triangles[3 * i], triangles[3 * i + 1], triangles[3 * i + 2] };
-    std::sort(key.begin(), key.end());
-    maxVertex = std::max(maxVertex, key[2]);
-    index.emplace(key, i);
-  }
+  for (std::int64_t i = 0; i < 3 * static_cast<std::int64_t>(triangleCount); ++i)
+    maxVertex = std::max(maxVertex, triangles[i]);
   std::vector<std::int32_t> faceTriangle(tets.size(), -1);
   for (std::size_t t = 0; t < tets.size() / 4; ++t)
   {
@@ -126,9 +122,10 @@ std::vector<std::int32_t> tetFaceTriangles(const std::vector<std::int32_t>& tets
     {
       if (beyondCount == 1 && f != beyond)
         continue; // face f contains every vertex but f
-      auto found = index.find(sortedFace(tets, t, f));
-      if (found != index.end())
-        faceTriangle[4 * t + static_cast<std::size_t>(f)] = found->second;
+      const int* fv = kFaceVertices[f];
+      const std::int32_t found = index.find(tet[fv[0]], tet[fv[1]], tet[fv[2]]);
+      if (found >= 0)
+        faceTriangle[4 * t + static_cast<std::size_t>(f)] = found;
     }
   }
   return faceTriangle;

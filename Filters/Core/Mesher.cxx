@@ -8,9 +8,9 @@
 #include "SurfaceDiagnosis.h"
 #include "SurfaceInput.h"
 #include "TetMesh.h"
+#include "TriangleIndex.h"
 
 #include <chrono>
-#include <map>
 #include <sstream>
 
 namespace tetmesher
@@ -174,12 +174,7 @@ MesherResult meshSurface(const double* points,
       for (int k = 0; k < 3; ++k)
         result.points[3 * static_cast<std::size_t>(newId[v]) + k] = mesh.coords[3 * v + k];
   }
-  std::map<std::array<VertexId, 3>, std::int32_t> triangleOf;
-  for (std::int32_t i = 0; i < triangleCount; ++i)
-  {
-    const auto& tri = surface.triangles[i];
-    triangleOf.emplace(sortedTriangle(tri[0], tri[1], tri[2]), i);
-  }
+  const TriangleIndex triangleOf(surface.triangles);
   result.boundaryFaceTet.assign(triangleCount, -1);
   result.tets.reserve(4 * kept.size());
   result.regionIds.reserve(kept.size());
@@ -194,10 +189,10 @@ MesherResult meshSurface(const double* points,
       if (!mesh.isConstrained(t, f))
         continue;
       const int* fv = kFaceVertices[f];
-      auto it = triangleOf.find(
-        sortedTriangle(mesh.vertex(t, fv[0]), mesh.vertex(t, fv[1]), mesh.vertex(t, fv[2])));
-      if (it != triangleOf.end() && result.boundaryFaceTet[it->second] < 0)
-        result.boundaryFaceTet[it->second] = static_cast<std::int32_t>(4 * k + f);
+      const std::int32_t i =
+        triangleOf.find(mesh.vertex(t, fv[0]), mesh.vertex(t, fv[1]), mesh.vertex(t, fv[2]));
+      if (i >= 0 && result.boundaryFaceTet[i] < 0)
+        result.boundaryFaceTet[i] = static_cast<std::int32_t>(4 * k + f);
     }
   }
   result.regionsSeconds = secondsSince(stageStart);

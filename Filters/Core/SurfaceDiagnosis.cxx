@@ -1,6 +1,7 @@
 #include "SurfaceDiagnosis.h"
 
 #include "Predicates.h"
+#include "RadixSort.h"
 #include "TriangleIntersection.h"
 
 #include <algorithm>
@@ -517,6 +518,17 @@ private:
     std::vector<bool> isLarge(m, false);
     for (std::uint32_t i : large)
       isLarge[i] = true;
+    // Cells numbered densely (x, then y, then z) over the cells in use: short keys, fewer
+    // radix passes.
+    std::uint64_t cellsY = 1, cellsZ = 1;
+    for (std::size_t i = 0; i < m; ++i)
+      if (!isLarge[i])
+      {
+        cellsY = std::max<std::uint64_t>(cellsY, range[6 * i + 4] + 1);
+        cellsZ = std::max<std::uint64_t>(cellsZ, range[6 * i + 5] + 1);
+      }
+    auto key = [cellsY, cellsZ](std::uint32_t x, std::uint32_t y, std::uint32_t z)
+    { return (x * cellsY + y) * cellsZ + z; };
     for (std::size_t i = 0; i < m; ++i)
     {
       if (isLarge[i])
@@ -527,7 +539,7 @@ private:
           for (std::uint32_t z = r[2]; z <= r[5]; ++z)
             entries.push_back({ key(x, y, z), static_cast<std::uint32_t>(i) });
     }
-    std::sort(entries.begin(), entries.end());
+    sortPushedPairs(entries);
 
     std::vector<std::pair<std::int32_t, std::int32_t>> found;
     const std::size_t limit = Options.maxRecordsPerKind;
@@ -595,11 +607,6 @@ private:
   {
     const double f = std::floor(x / cell);
     return static_cast<std::uint32_t>(std::min(std::max(f, 0.0), double((1 << 21) - 1)));
-  }
-
-  static std::uint64_t key(std::uint32_t x, std::uint32_t y, std::uint32_t z)
-  {
-    return (static_cast<std::uint64_t>(x) << 42) | (static_cast<std::uint64_t>(y) << 21) | z;
   }
 
   bool intersect(std::int32_t s, std::int32_t t) const

@@ -1,0 +1,52 @@
+// Input triangles by their vertex sets: which triangle has the vertices {a, b, c}.
+#pragma once
+
+#include "TetMesh.h"
+
+#include <array>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace tetmesher
+{
+
+// Triangles grouped by their smallest vertex (counting sort), each with its other two sorted:
+// a look-up scans the few triangles of one vertex. Several times faster to build and to query
+// than a std::map or hash map of vertex triples on the 10^5 triangles of big surfaces.
+class TriangleIndex
+{
+public:
+  // `triangles`: 3 vertex ids (>= 0) per triangle.
+  TriangleIndex(const std::int32_t* triangles, std::int32_t triangleCount);
+  explicit TriangleIndex(const std::vector<std::array<VertexId, 3>>& triangles);
+
+  // The lowest id of a triangle with vertices {a, b, c} (any order), or -1.
+  std::int32_t find(VertexId a, VertexId b, VertexId c) const
+  {
+    sort3(a, b, c);
+    if (a < 0 || static_cast<std::size_t>(a) + 1 >= start_.size())
+      return -1;
+    for (std::int32_t k = start_[a]; k < start_[a + 1]; ++k)
+      if (others_[k][0] == b && others_[k][1] == c)
+        return triangle_[k];
+    return -1;
+  }
+
+private:
+  static void sort3(VertexId& a, VertexId& b, VertexId& c)
+  {
+    if (b < a)
+      std::swap(a, b);
+    if (c < b)
+      std::swap(b, c);
+    if (b < a)
+      std::swap(a, b);
+  }
+
+  std::vector<std::int32_t> start_;             // entries of vertex v: [start_[v], start_[v+1])
+  std::vector<std::array<VertexId, 2>> others_; // per entry, the other two vertices, sorted
+  std::vector<std::int32_t> triangle_;          // per entry, the triangle id (increasing)
+};
+
+} // namespace tetmesher
