@@ -206,12 +206,21 @@ public:
       ++edgeStart_[edge[0] + 1];
     for (std::size_t v = 0; v + 1 < edgeStart_.size(); ++v)
       edgeStart_[v + 1] += edgeStart_[v];
-    edgeTriangles_.resize(surface_.edges.size());
+    // The triangles of each input point, in increasing order.
+    vertexTriangleStart_.assign(static_cast<std::size_t>(surface_.pointCount) + 1, 0);
     for (const auto& t : surface_.triangles)
+      for (VertexId v : t)
+        ++vertexTriangleStart_[v + 1];
+    for (std::size_t v = 0; v + 1 < vertexTriangleStart_.size(); ++v)
+      vertexTriangleStart_[v + 1] += vertexTriangleStart_[v];
+    vertexTriangles_.resize(3 * surface_.triangles.size());
     {
-      for (int k = 0; k < 3; ++k)
-        edgeTriangles_[inputEdgeIndex(t[k], t[(k + 1) % 3])].push_back(t);
+      std::vector<std::int32_t> next(vertexTriangleStart_.begin(), vertexTriangleStart_.end() - 1);
+      for (std::size_t i = 0; i < surface_.triangles.size(); ++i)
+        for (VertexId v : surface_.triangles[i])
+          vertexTriangles_[next[v]++] = static_cast<std::int32_t>(i);
     }
+    triangleBoxes_.reserve(surface_.triangles.size());
     for (const auto& t : surface_.triangles)
     {
       std::array<double, 6> box;
@@ -329,10 +338,10 @@ private:
   // point that close is strictly inside by the exact tests but on the surface for any user.
   bool onInputSurface(const double* x, double tolerance) const;
   void markConstrained(FaceRef face);
-  // One pass over the tets: which input edges the mesh has, and a face ref of each input
-  // triangle it has (-1 if none). The Delaunay mesh of the surface points already has most
-  // of them, and a star search per item cost more than the flips on big surfaces (bunny00,
-  // 75k triangles: a fifth of the recovery).
+  // One pass over the tets: a face ref of each input triangle the mesh has (-1 if none), and
+  // the input edges of those (edgeInMesh; others may be there too). The Delaunay mesh of the
+  // surface points already has most of them, and a star search per item cost more than the
+  // flips on big surfaces (bunny00, 75k triangles: a fifth of the recovery).
   void findPresentItems(std::vector<char>& edgeInMesh, std::vector<FaceRef>& triangleFace);
   // True when the time budget is spent or the progress callback asked to abort (polled a
   // few times a second); result_.error then names the item being recovered.
@@ -396,7 +405,22 @@ private:
   std::vector<std::array<double, 6>> triangleBoxes_;
   std::unique_ptr<InsertionWorkspace, WorkspaceDeleter> workspace_{ createInsertionWorkspace() };
   RecoveryResult result_;
-  std::vector<std::vector<std::array<VertexId, 3>>> edgeTriangles_; // input triangles per edge
+  // Input triangles by point: those of point v are vertexTriangles_[vertexTriangleStart_[v] ..
+  // vertexTriangleStart_[v + 1]), in increasing order.
+  std::vector<std::int32_t> vertexTriangleStart_, vertexTriangles_;
+  // The input triangles of input edge e, in increasing order.
+  std::vector<std::array<VertexId, 3>> edgeTriangles(std::size_t e) const
+  {
+    const VertexId a = surface_.edges[e][0], b = surface_.edges[e][1];
+    std::vector<std::array<VertexId, 3>> found;
+    for (std::int32_t k = vertexTriangleStart_[a]; k < vertexTriangleStart_[a + 1]; ++k)
+    {
+      const auto& t = surface_.triangles[vertexTriangles_[k]];
+      if (t[0] == b || t[1] == b || t[2] == b)
+        found.push_back(t);
+    }
+    return found;
+  }
   std::map<std::size_t, int> steinerPerItem_; // edges by index, then triangles after them
   std::chrono::steady_clock::time_point start_, lastPoll_;
   const std::function<bool(double)>* progress_ = nullptr;
@@ -688,7 +712,7 @@ ItemCost Recovery::edgeAndFacesCost(std::size_t e) const
   std::vector<FlipCost> parts = { edgeCost(surface_.edges[e][0], surface_.edges[e][1]) };
   ItemCost c;
   c.box = boxOf({ surface_.edges[e][0], surface_.edges[e][1] });
-  for (const auto& tri : edgeTriangles_[e])
+  for (const auto& tri : edgeTriangles(e))
   {
     parts.push_back(faceCost(tri));
     const std::array<double, 6> box = boxOf({ tri[0], tri[1], tri[2] });
@@ -1349,23 +1373,27 @@ void Recovery::findPresentItems(std::vector<char>& edgeInMesh, std::vector<FaceR
     if (mesh_.isDeleted(t))
       continue;
     const TetVertices v = tetVertices(t);
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j)
-      {
-        const std::int32_t e = inputEdgeIndex(v[i], v[j]);
-        if (e >= 0)
-          edgeInMesh[e] = 1;
-      }
     for (int f = 0; f < 4; ++f)
     {
       const int* fv = kFaceVertices[f];
-      if (v[fv[0]] >= pointCount || v[fv[1]] >= pointCount || v[fv[2]] >= pointCount)
-        continue; // a box corner or a Steiner point
+      const FaceRef n = mesh_.neighbor(t, f);
+      if (v[fv[0]] >= pointCount || v[fv[1]] >= pointCount || v[fv[2]] >= pointCount ||
+        (n != kNoNeighbor && faceTet(n) < t))
+        continue; // a box corner or a Steiner point, or the face seen from its other side
       const std::int32_t i = triangles.find(v[fv[0]], v[fv[1]], v[fv[2]]);
       if (i >= 0)
         triangleFace[i] = makeFaceRef(t, f);
     }
   }
+  // The edges of those triangles (an edge whose triangles are all missing is looked up when
+  // needed).
+  for (std::size_t i = 0; i < triangleFace.size(); ++i)
+    if (triangleFace[i] >= 0)
+      for (int k = 0; k < 3; ++k)
+      {
+        const auto& tri = surface_.triangles[i];
+        edgeInMesh[inputEdgeIndex(tri[k], tri[(k + 1) % 3])] = 1;
+      }
 }
 
 RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
