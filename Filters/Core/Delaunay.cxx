@@ -70,7 +70,10 @@ struct InsertionWorkspace
 
   std::vector<TetId> cavity;
   std::vector<TetId> rejected;
-  std::vector<TetId> cone; // fast mode: the new tet of each boundary face
+  std::vector<TetId> cone; // directed gluing: the new tet of each boundary face
+  // Checked mode: a constrained face has the cavity on both sides (the cavity reached around
+  // it), so its edges are on more than two boundary faces and fillCavity glues pairwise.
+  bool internalConstraint = false;
   std::vector<BoundaryFace> boundary;
   std::vector<EdgeSlot> edgeTable = std::vector<EdgeSlot>(512, EdgeSlot{ 0, -1, -1, 0 });
   std::uint32_t edgeStamp = 0;
@@ -394,44 +397,86 @@ void growCavityFast(TetMesh& mesh, VertexId v, TetId start, InsertionWorkspace& 
 }
 
 // Checked mode: grows the conflict region from `start`, marking tets in mesh.flags and never
-// crossing a constrained face; the boundary is collected after shrinkToStar.
-void growCavityChecked(TetMesh& mesh, VertexId v, TetId start, InsertionWorkspace& ws)
+// crossing a constrained face. Collects the boundary faces as collectBoundary would (cavity
+// order, faces in order) and tests on the way whether v sees each strictly: true when all
+// do, the usual case, where shrinkToStar would keep every tet for them.
+bool growCavityChecked(TetMesh& mesh, VertexId v, TetId start, InsertionWorkspace& ws)
 {
   const double* coords = mesh.coords.data();
+  const double* p = pointOf(coords, v);
   std::uint8_t* flags = mesh.flags.data();
   const FaceRef* neighbors = mesh.neighbors.data();
   const VertexId* tets = mesh.tets.data();
   ws.cavity.clear();
   ws.rejected.clear();
   ws.boundary.clear();
+  ws.internalConstraint = false;
   flags[start] |= kInCavity;
   ws.cavity.push_back(start);
+  bool allVisible = true;
   for (std::size_t i = 0; i < ws.cavity.size(); ++i)
   {
     const TetId c = ws.cavity[i];
     for (int f = 0; f < 4; ++f)
     {
       const FaceRef n = neighbors[4 * static_cast<std::size_t>(c) + f];
-      if (n == kNoNeighbor || ((flags[c] >> f) & 1u))
-        continue;
-      const TetId u = faceTet(n);
-      if (!((flags[u] >> faceIndex(n)) & 1u) && !(flags[u] & (kInCavity | kRejected)))
+      bool constrained = (flags[c] >> f) & 1u;
+      if (n != kNoNeighbor)
       {
-        const VertexId* uv = tets + 4 * static_cast<std::size_t>(u);
-        if (predicates::insphereSoSFiltered(
-              coords, uv[0], uv[1], uv[2], uv[3], v, ws.perturbationIds) > 0)
+        const TetId u = faceTet(n);
+        constrained = constrained || ((flags[u] >> faceIndex(n)) & 1u);
+        if (!constrained && !(flags[u] & (kInCavity | kRejected)))
         {
-          flags[u] |= kInCavity;
-          ws.cavity.push_back(u);
+          const VertexId* uv = tets + 4 * static_cast<std::size_t>(u);
+          if (predicates::insphereSoSFiltered(
+                coords, uv[0], uv[1], uv[2], uv[3], v, ws.perturbationIds) > 0)
+          {
+            flags[u] |= kInCavity;
+            ws.cavity.push_back(u);
+          }
+          else
+          {
+            flags[u] |= kRejected;
+            ws.rejected.push_back(u);
+          }
         }
-        else
+        if (flags[u] & kInCavity)
         {
-          flags[u] |= kRejected;
-          ws.rejected.push_back(u);
+          if (!constrained)
+            continue; // an internal face
+          ws.internalConstraint = true;
         }
       }
+      const VertexId* tv = tets + 4 * static_cast<std::size_t>(c);
+      ws.boundary.push_back(
+        { { tv[kFaceVertices[f][0]], tv[kFaceVertices[f][1]], tv[kFaceVertices[f][2]] },
+          n,
+          constrained });
+      allVisible = allVisible && faceOrient(mesh, coords, c, f, p) > 0;
     }
   }
+  return allVisible;
+}
+
+// True when every vertex of a cavity tet is on a boundary face (ws.boundary): none would
+// vanish from the mesh. (The check that ends shrinkToStar.)
+bool noVertexSwallowed(const TetMesh& mesh, InsertionWorkspace& ws)
+{
+  if (ws.vertexStamp.size() < static_cast<std::size_t>(mesh.vertexCount()))
+    ws.vertexStamp.resize(static_cast<std::size_t>(mesh.vertexCount()) + 1024, 0);
+  if (++ws.stamp == 0)
+  {
+    std::fill(ws.vertexStamp.begin(), ws.vertexStamp.end(), 0);
+    ws.stamp = 1;
+  }
+  for (const auto& face : ws.boundary)
+    for (int k = 0; k < 3; ++k)
+      ws.vertexStamp[static_cast<std::size_t>(face.v[k])] = ws.stamp;
+  for (TetId c : ws.cavity)
+    for (int k = 0; k < 4; ++k)
+      if (ws.vertexStamp[static_cast<std::size_t>(mesh.vertex(c, k))] != ws.stamp)
+        return false;
+  return true;
 }
 
 // Symmetric in (a, b), so that both directions of an edge probe the same chain. (Not a ^ b:
@@ -487,11 +532,15 @@ TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
     mesh.flags.reserve(grown);
   }
 
-  if (!Checked && ws.cone.size() < faceCount)
+  // Every directed edge is on exactly one boundary face when the cavity's boundary is a
+  // sphere: always in fast mode (no constraints), and in checked mode unless a constrained
+  // face lies inside the cavity. Then each edge is stored first and looked up second.
+  const bool directed = !Checked || !ws.internalConstraint;
+  if (directed && ws.cone.size() < faceCount)
     ws.cone.resize(2 * faceCount);
-  // Fast mode: number the boundary vertices (see InsertionWorkspace::localEdges).
+  // Number the boundary vertices (see InsertionWorkspace::localEdges).
   bool local = false;
-  if (!Checked)
+  if (directed)
   {
     constexpr int kMaxLocal = InsertionWorkspace::kMaxLocal;
     if (ws.vertexTag.size() < static_cast<std::size_t>(mesh.vertexCount()))
@@ -550,7 +599,7 @@ TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
     if (Checked && bf.constrained)
       mesh.flags[t] = static_cast<std::uint8_t>(kConstrainedFace0 << 3);
     lastTet = t;
-    if (!Checked)
+    if (directed)
     {
       // Every directed edge occurs exactly once on an unconstrained cavity's boundary, so
       // all are stored first and looked up second: no "first or second visit" branch, which
@@ -599,7 +648,7 @@ TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
       }
     }
   }
-  if (!Checked && local)
+  if (directed && local)
     for (std::size_t i = 0; i < faceCount; ++i)
     {
       // The neighbouring cone tet holds the same edge in the opposite direction.
@@ -609,7 +658,7 @@ TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
         mesh.neighbors[base + kEdgeFace[e]] =
           ws.localEdges[l[(e + 1) % 3] * InsertionWorkspace::kMaxLocal + l[e]];
     }
-  else if (!Checked)
+  else if (directed)
     for (std::size_t i = 0; i < faceCount; ++i)
     {
       const InsertionWorkspace::BoundaryFace& bf = ws.boundary[i];
@@ -672,11 +721,12 @@ InsertResult insertImpl(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspac
       if (faceConstrained(mesh, t, f) && faceOrient(mesh, coords, t, f, p) == 0)
         return { InsertStatus::OnConstraint, t, -1 };
   }
+  bool starShaped = false;
   if (Checked)
-    growCavityChecked(mesh, v, t, ws);
+    starShaped = growCavityChecked(mesh, v, t, ws) && noVertexSwallowed(mesh, ws);
   else
     growCavityFast(mesh, v, t, ws);
-  if (Checked)
+  if (Checked && !starShaped)
   {
     if (shrinkToStar(mesh, p, t, ws) == ShrinkOutcome::OnConstraint)
     {
