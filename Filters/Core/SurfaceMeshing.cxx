@@ -142,6 +142,12 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
   {
     return fail("meshing was aborted");
   }
+  // The limit ends meshing through the progress callback or through the recovery's own
+  // budget, whichever looks first: the same message either way.
+  outOfTime = outOfTime ||
+    (settings.timeLimit > 0 &&
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
+        settings.timeLimit);
   if (outOfTime && !result.ok)
   {
     std::ostringstream message;
