@@ -80,6 +80,12 @@ struct SurfaceData
 // Object File Format: "OFF", then "points faces edges", points, faces "n v0 .. v(n-1)".
 // Throws FileError naming the line.
 SurfaceData ReadOff(const std::string& path);
+// ReadOff's two parsers, for tests. The line parser (istream extraction, line by line) reads
+// every file and names the line of a defect. The fast one reads the text of a usual file
+// (plain decimal numbers, the tokens ReadOff needs at the start of each line) with the same
+// result, and declines (false) anything else, which the line parser then reads.
+SurfaceData ReadOffByLines(const std::string& path);
+bool ReadOffFast(const std::string& text, SurfaceData& surface);
 
 // A .vtp as vtkXMLPolyDataReader reads it: false (nothing thrown) when the file uses
 // something this reader does not handle (another compressor, big-endian, several pieces,
