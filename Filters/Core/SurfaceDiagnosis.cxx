@@ -354,16 +354,16 @@ private:
         uses.push_back({ std::min(a, b), std::max(a, b), t, a < b, c });
       }
     }
-    std::sort(uses.begin(),
-      uses.end(),
-      [](const EdgeUse& x, const EdgeUse& y)
+    // By (lo, hi, tri): the uses were pushed in triangle order, and the radix sort is stable.
+    {
+      auto keyOf = [](const EdgeUse& u)
       {
-        if (x.lo != y.lo)
-          return x.lo < y.lo;
-        if (x.hi != y.hi)
-          return x.hi < y.hi;
-        return x.tri < y.tri;
-      });
+        return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(u.lo)) << 32) |
+          static_cast<std::uint32_t>(u.hi);
+      };
+      std::vector<EdgeUse> scratch;
+      radixSortByKey(uses, scratch, keyOf, keyBitsOf(uses, keyOf));
+    }
 
     // Sides of triangles joined through the space around each edge: a triangle whose two sides
     // end up in one class has the same region on both sides and bounds nothing.
@@ -567,25 +567,45 @@ private:
         stop = test(i, j);
       }
     }
+    // Per cell, its triangles' boxes and first cells copied side by side: the pairs then read
+    // them from a few cache lines instead of two scattered loads per pair.
+    struct CellEntry
+    {
+      std::uint32_t triangle;
+      std::uint32_t firstCell[3];
+      double box[6];
+    };
+    std::vector<CellEntry> cellEntries;
     for (std::size_t s = 0; s < entries.size() && !stop;)
     {
       std::size_t e = s + 1;
       while (e < entries.size() && entries[e].first == entries[s].first)
         ++e;
-      for (std::size_t a = s; a < e && !stop; ++a)
+      cellEntries.clear();
+      for (std::size_t a = s; a < e; ++a)
       {
-        for (std::size_t b = a + 1; b < e && !stop; ++b)
+        const std::uint32_t i = entries[a].second;
+        CellEntry entry;
+        entry.triangle = i;
+        std::copy(&range[6 * i], &range[6 * i] + 3, entry.firstCell);
+        std::copy(&box[6 * i], &box[6 * i] + 6, entry.box);
+        cellEntries.push_back(entry);
+      }
+      for (std::size_t a = 0; a < cellEntries.size() && !stop; ++a)
+      {
+        const CellEntry& x = cellEntries[a];
+        for (std::size_t b = a + 1; b < cellEntries.size() && !stop; ++b)
         {
-          const std::uint32_t i = entries[a].second, j = entries[b].second;
-          if (!boxesOverlap(i, j))
+          const CellEntry& y = cellEntries[b];
+          if (x.box[3] < y.box[0] || y.box[3] < x.box[0] || x.box[4] < y.box[1] ||
+            y.box[4] < x.box[1] || x.box[5] < y.box[2] || y.box[5] < x.box[2])
             continue;
           // Test each pair once: in the first cell both boxes cover.
-          const std::uint32_t* ri = &range[6 * i];
-          const std::uint32_t* rj = &range[6 * j];
-          if (key(std::max(ri[0], rj[0]), std::max(ri[1], rj[1]), std::max(ri[2], rj[2])) !=
-            entries[s].first)
+          if (key(std::max(x.firstCell[0], y.firstCell[0]),
+                std::max(x.firstCell[1], y.firstCell[1]),
+                std::max(x.firstCell[2], y.firstCell[2])) != entries[s].first)
             continue;
-          stop = test(i, j);
+          stop = test(x.triangle, y.triangle);
         }
       }
       s = e;
