@@ -1,7 +1,9 @@
 // Open-addressing hash table (linear probing) cleared in O(1) by an epoch: a slot is live only
 // when its epoch is the table's. For the scratch of boundary recovery's flip searches (memos of
 // exact tests, sets of tried faces and edges), emptied thousands of times per surface: one
-// allocation per growth instead of one per entry, and the slots stay for the next search.
+// allocation per growth instead of one per entry, and the slots stay for the next search. Also
+// the refinement's grids of cells: a look-up reads one or two slots, where std::unordered_map
+// follows a bucket's pointers.
 #pragma once
 
 #include <algorithm>
@@ -11,6 +13,20 @@
 
 namespace tetmesher
 {
+
+// A hash of 64-bit keys that spreads every input bit (the splitmix64 finaliser): packed grid
+// cell indices differ in few, low bits, and the table keeps only the low bits of the hash.
+struct MixHash64
+{
+  std::size_t operator()(std::uint64_t x) const
+  {
+    x ^= x >> 30;
+    x *= 0xbf58476d1ce4e5b9ULL;
+    x ^= x >> 27;
+    x *= 0x94d049bb133111ebULL;
+    return static_cast<std::size_t>(x ^ (x >> 31));
+  }
+};
 
 template<typename Key, typename Value, typename Hash>
 class EpochHashTable
@@ -31,6 +47,10 @@ public:
     }
   }
 
+  Value* find(const Key& k)
+  {
+    return const_cast<Value*>(static_cast<const EpochHashTable*>(this)->find(k));
+  }
   // Adds k with `value` and returns true, or returns false (and changes nothing) when k is in.
   bool insert(const Key& k, const Value& value = Value())
   {

@@ -3,9 +3,11 @@
 #include "BoundarySizeCeiling.h"
 #include "BoundarySizeFloor.h"
 #include "Delaunay.h"
+#include "EpochHashTable.h"
 #include "HilbertSort.h"
 #include "HugePages.h"
 #include "MemoryBudget.h"
+#include "RadixSort.h"
 #include "TriangleDistance.h"
 
 #include <algorithm>
@@ -16,7 +18,6 @@
 #include <limits>
 #include <memory>
 #include <unordered_map>
-#include <unordered_set>
 
 namespace tetmesher
 {
@@ -134,9 +135,15 @@ public:
     l.maxSize = std::max(l.maxSize, h);
     const std::uint64_t key = cellKey(index(l, p[0], 0), index(l, p[1], 1), index(l, p[2], 2));
     const auto node = static_cast<std::int32_t>(nodes_.size());
-    auto [it, fresh] = l.head.emplace(key, node);
-    nodes_.push_back({ { p[0], p[1], p[2] }, v, fresh ? -1 : it->second, level });
-    it->second = node;
+    std::int32_t next = -1;
+    if (std::int32_t* head = l.head.find(key))
+    {
+      next = *head;
+      *head = node;
+    }
+    else
+      l.head.insert(key, node);
+    nodes_.push_back({ { p[0], p[1], p[2] }, v, next, level });
   }
 
   // Is some vertex q with d(p,q) * (1/h + 1/h_q) / 2 < ratio?
@@ -168,10 +175,10 @@ public:
         for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
           for (std::int64_t k = c0[2]; k <= c1[2]; ++k)
           {
-            auto it = l.head.find(cellKey(i, j, k));
-            if (it == l.head.end())
+            const std::int32_t* head = l.head.find(cellKey(i, j, k));
+            if (!head)
               continue;
-            for (std::int32_t n = it->second; n >= 0; n = nodes_[n].next)
+            for (std::int32_t n = *head; n >= 0; n = nodes_[n].next)
               if (isNear(p, h, nodes_[n], sizes))
                 return true;
           }
@@ -184,7 +191,7 @@ private:
   {
     double cell = 0;
     double maxSize = 0; // largest size given to a vertex of the class
-    std::unordered_map<std::uint64_t, std::int32_t> head;
+    EpochHashTable<std::uint64_t, std::int32_t, MixHash64> head; // a cell's latest node
   };
   struct Node
   {
@@ -262,8 +269,14 @@ public:
         for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
           for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
             for (std::int64_t k = c0[2]; k <= c1[2]; ++k)
-              cells_[key(i, j, k)].push_back(id);
+              entries_.push_back({ key(i, j, k), id });
       });
+    // The faces of each cell side by side (pushed in face order, which the sort keeps), and
+    // where each cell's run starts.
+    sortPushedPairs(entries_);
+    for (std::size_t e = 0; e < entries_.size(); ++e)
+      if (e == 0 || entries_[e].first != entries_[e - 1].first)
+        cellStart_.insert(entries_[e].first, static_cast<std::uint32_t>(e));
   }
 
   // Is a constrained face closer to p than limit?
@@ -297,11 +310,12 @@ public:
       for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
         for (std::int64_t k = c0[2]; k <= c1[2]; ++k)
         {
-          auto it = cells_.find(key(i, j, k));
-          if (it == cells_.end())
+          const std::uint64_t cell = key(i, j, k);
+          const std::uint32_t* start = cellStart_.find(cell);
+          if (!start)
             continue;
-          for (std::int32_t id : it->second)
-            if (faceIsNear(id))
+          for (std::size_t e = *start; e < entries_.size() && entries_[e].first == cell; ++e)
+            if (faceIsNear(entries_[e].second))
               return true;
         }
     return false;
@@ -344,8 +358,9 @@ private:
   double cell_;
   double origin_[3];
   std::vector<VertexId> corners_;
-  std::vector<double> boxes_; // per face: min x y z, max x y z
-  std::unordered_map<std::uint64_t, std::vector<std::int32_t>> cells_;
+  std::vector<double> boxes_;                                   // per face: min x y z, max x y z
+  std::vector<std::pair<std::uint64_t, std::int32_t>> entries_; // (cell, face), by cell
+  EpochHashTable<std::uint64_t, std::uint32_t, MixHash64> cellStart_; // a cell's first entry
   std::vector<std::int32_t> large_; // faces over kMaxCellsPerFace cells
 };
 
@@ -587,7 +602,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
 
   // Constrained edges (edges of boundary / interface faces), a tet per vertex.
   std::vector<char> onConstraint(static_cast<std::size_t>(initialCount), 0);
-  std::unordered_set<std::uint64_t> constrainedEdges;
+  EpochHashTable<std::uint64_t, std::uint8_t, MixHash64> constrainedEdges;
   std::vector<TetId> vertexTet(static_cast<std::size_t>(initialCount), -1);
   for (TetId t = 0; t < mesh.tetCapacity(); ++t)
   {
@@ -1000,7 +1015,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     };
     std::vector<LatticePoint> points;
     const double jitter = std::clamp(options.latticeJitter, 0.0, 0.5);
-    std::unordered_set<std::uint64_t> taken;
+    EpochHashTable<std::uint64_t, std::uint8_t, MixHash64> taken; // lattice keys used
     // Work bounds. The key holds 19 bits per index, so a level whose indices would go beyond
     // that is left to the edge splitting (keys would collide, and far beyond, the index would
     // not even fit an integer). And the work is bounded: a tet's bounding box can hold vastly
@@ -1190,7 +1205,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
                   if (levelOfSize(hp) != level)
                     continue;
                 }
-                if (!taken.insert(key).second)
+                if (!taken.insert(key))
                   continue;
                 points.push_back({ { p[0], p[1], p[2] },
                   hp,
@@ -1317,7 +1332,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
         if (b < a)
           continue;
         if (a < initialCount && b < initialCount && onConstraint[a] && onConstraint[b] &&
-          constrainedEdges.count(edgeKey(a, b)))
+          constrainedEdges.find(edgeKey(a, b)))
           continue;
         const double length = distance(mesh.point(a), mesh.point(b)) * 0.5 * (1 / h[a] + 1 / h[b]);
         if (!(length > options.maxEdgeRatio))
