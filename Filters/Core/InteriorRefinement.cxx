@@ -133,7 +133,13 @@ public:
     }
     Level& l = levels_[level];
     l.maxSize = std::max(l.maxSize, h);
-    const std::uint64_t key = cellKey(index(l, p[0], 0), index(l, p[1], 1), index(l, p[2], 2));
+    const std::int64_t cell[3] = { index(l, p[0], 0), index(l, p[1], 1), index(l, p[2], 2) };
+    for (int a = 0; a < 3; ++a)
+    {
+      l.occupiedLo[a] = std::min(l.occupiedLo[a], cell[a]);
+      l.occupiedHi[a] = std::max(l.occupiedHi[a], cell[a]);
+    }
+    const std::uint64_t key = cellKey(cell[0], cell[1], cell[2]);
     const auto node = static_cast<std::int32_t>(nodes_.size());
     std::int32_t next = -1;
     if (std::int32_t* head = l.head.find(key))
@@ -159,10 +165,14 @@ public:
       {
         const double slack = 4 * std::numeric_limits<double>::epsilon() *
           (std::fabs(p[a]) + std::fabs(origin_[a]) + radius);
-        c0[a] = index(l, p[a] - radius - slack, a);
-        c1[a] = index(l, p[a] + radius + slack, a);
-        cells *= static_cast<double>(c1[a] - c0[a] + 1);
+        // Only the cells where the class has vertices: classes of other sizes than the
+        // neighbourhood's (a femur's fine levels, far from a coarse query) are skipped.
+        c0[a] = std::max(index(l, p[a] - radius - slack, a), l.occupiedLo[a]);
+        c1[a] = std::min(index(l, p[a] + radius + slack, a), l.occupiedHi[a]);
+        cells *= static_cast<double>(std::max<std::int64_t>(c1[a] - c0[a] + 1, 0));
       }
+      if (cells == 0)
+        continue;
       if (!(cells <= 4096)) // a query far larger than the class (or NaN): scan the class
       {
         const std::int32_t level = static_cast<std::int32_t>(&l - levels_.data());
@@ -192,6 +202,13 @@ private:
     double cell = 0;
     double maxSize = 0; // largest size given to a vertex of the class
     EpochHashTable<std::uint64_t, std::int32_t, MixHash64> head; // a cell's latest node
+    // The box of the cells holding the class's vertices (empty: lo > hi).
+    std::int64_t occupiedLo[3] = { std::numeric_limits<std::int64_t>::max(),
+      std::numeric_limits<std::int64_t>::max(),
+      std::numeric_limits<std::int64_t>::max() };
+    std::int64_t occupiedHi[3] = { std::numeric_limits<std::int64_t>::min(),
+      std::numeric_limits<std::int64_t>::min(),
+      std::numeric_limits<std::int64_t>::min() };
   };
   struct Node
   {
