@@ -79,17 +79,6 @@ double segmentDistanceSquared(const double* p, const double* q, const double* r,
 // Ericson, Real-Time Collision Detection 5.1.5: the Voronoi region of the closest feature
 // from six dot products, without the three segment distances (the refinement asks this for
 // every candidate point near the boundary).
-double pointBoxDistance(const double* x, const double* box)
-{
-  double d2 = 0;
-  for (int a = 0; a < 3; ++a)
-  {
-    const double d = std::max({ box[a] - x[a], x[a] - box[3 + a], 0.0 });
-    d2 += d * d;
-  }
-  return std::sqrt(d2);
-}
-
 void gatherTriangle(const double* points, const std::int32_t* ids, double* corner, double* box)
 {
   for (int k = 0; k < 3; ++k)
