@@ -1,5 +1,7 @@
 #include "MeshTopology.h"
 
+#include "SurfaceInput.h"
+
 #include <algorithm>
 #include <cassert>
 
@@ -208,16 +210,6 @@ void replaceTets(TetMesh& mesh,
     FaceRef outside;
     bool constrained;
   };
-  auto sortedKey = [](VertexId a, VertexId b, VertexId c)
-  {
-    if (b < a)
-      std::swap(a, b);
-    if (c < b)
-      std::swap(b, c);
-    if (b < a)
-      std::swap(a, b);
-    return std::array<VertexId, 3>{ a, b, c };
-  };
   // Element-wise (std::array's == becomes a memcmp call here, the hot spot of this loop).
   auto same = [](const std::array<VertexId, 3>& x, const std::array<VertexId, 3>& y)
   { return x[0] == y[0] && x[1] == y[1] && x[2] == y[2]; };
@@ -234,7 +226,7 @@ void replaceTets(TetMesh& mesh,
         continue;
       const int* fv = kFaceVertices[f];
       boundary.push_back(
-        { sortedKey(mesh.vertex(t, fv[0]), mesh.vertex(t, fv[1]), mesh.vertex(t, fv[2])),
+        { sortedTriangle(mesh.vertex(t, fv[0]), mesh.vertex(t, fv[1]), mesh.vertex(t, fv[2])),
           n,
           mesh.isConstrained(t, f) });
     }
@@ -259,7 +251,7 @@ void replaceTets(TetMesh& mesh,
     for (int f = 0; f < 4; ++f)
     {
       const int* fv = kFaceVertices[f];
-      auto key = sortedKey(v[fv[0]], v[fv[1]], v[fv[2]]);
+      auto key = sortedTriangle(v[fv[0]], v[fv[1]], v[fv[2]]);
       auto b = std::find_if(
         boundary.begin(), boundary.end(), [&](const BoundaryFace& x) { return same(x.key, key); });
       if (b != boundary.end())

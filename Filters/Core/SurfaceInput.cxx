@@ -11,13 +11,6 @@
 namespace tetmesher
 {
 
-std::array<VertexId, 3> sortedTriangle(VertexId a, VertexId b, VertexId c)
-{
-  std::array<VertexId, 3> k = { a, b, c };
-  std::sort(k.begin(), k.end());
-  return k;
-}
-
 std::string buildSurfaceInput(const double* points,
   std::int32_t pointCount,
   const std::int32_t* triangles,

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace tetmesher
@@ -31,7 +32,17 @@ inline std::uint64_t edgeKey(VertexId a, VertexId b)
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
     static_cast<std::uint32_t>(b);
 }
-std::array<VertexId, 3> sortedTriangle(VertexId a, VertexId b, VertexId c);
+// The three ids in increasing order (a sorting network: hot in look-ups by vertex triple).
+inline std::array<VertexId, 3> sortedTriangle(VertexId a, VertexId b, VertexId c)
+{
+  if (b < a)
+    std::swap(a, b);
+  if (c < b)
+    std::swap(b, c);
+  if (b < a)
+    std::swap(a, b);
+  return { a, b, c };
+}
 
 // Builds the edge list and checks the structure. Returns an empty string on success, or a
 // message naming the defect and the triangle/edge/point ids.

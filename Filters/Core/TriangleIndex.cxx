@@ -33,10 +33,9 @@ TriangleIndex::TriangleIndex(const std::int32_t* triangles, std::int32_t triangl
   for (std::int32_t i = 0; i < triangleCount; ++i)
   {
     const std::int32_t* t = triangles + 3 * static_cast<std::size_t>(i);
-    VertexId a = t[0], b = t[1], c = t[2];
-    sort3(a, b, c);
-    const std::int32_t k = next[static_cast<std::size_t>(a)]++;
-    others_[k] = { b, c };
+    const auto sorted = sortedTriangle(t[0], t[1], t[2]);
+    const std::int32_t k = next[static_cast<std::size_t>(sorted[0])]++;
+    others_[k] = { sorted[1], sorted[2] };
     triangle_[k] = i;
   }
 }

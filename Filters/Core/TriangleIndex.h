@@ -1,6 +1,7 @@
 // Input triangles by their vertex sets: which triangle has the vertices {a, b, c}.
 #pragma once
 
+#include "SurfaceInput.h"
 #include "TetMesh.h"
 
 #include <array>
@@ -24,26 +25,16 @@ public:
   // The lowest id of a triangle with vertices {a, b, c} (any order), or -1.
   std::int32_t find(VertexId a, VertexId b, VertexId c) const
   {
-    sort3(a, b, c);
-    if (a < 0 || static_cast<std::size_t>(a) + 1 >= start_.size())
+    const auto k = sortedTriangle(a, b, c);
+    if (k[0] < 0 || static_cast<std::size_t>(k[0]) + 1 >= start_.size())
       return -1;
-    for (std::int32_t k = start_[a]; k < start_[a + 1]; ++k)
-      if (others_[k][0] == b && others_[k][1] == c)
-        return triangle_[k];
+    for (std::int32_t e = start_[k[0]]; e < start_[k[0] + 1]; ++e)
+      if (others_[e][0] == k[1] && others_[e][1] == k[2])
+        return triangle_[e];
     return -1;
   }
 
 private:
-  static void sort3(VertexId& a, VertexId& b, VertexId& c)
-  {
-    if (b < a)
-      std::swap(a, b);
-    if (c < b)
-      std::swap(b, c);
-    if (b < a)
-      std::swap(a, b);
-  }
-
   std::vector<std::int32_t> start_;             // entries of vertex v: [start_[v], start_[v+1])
   std::vector<std::array<VertexId, 2>> others_; // per entry, the other two vertices, sorted
   std::vector<std::int32_t> triangle_;          // per entry, the triangle id (increasing)
