@@ -169,7 +169,7 @@ public:
         // neighbourhood's (a femur's fine levels, far from a coarse query) are skipped.
         c0[a] = std::max(index(l, p[a] - radius - slack, a), l.occupiedLo[a]);
         c1[a] = std::min(index(l, p[a] + radius + slack, a), l.occupiedHi[a]);
-        cells *= static_cast<double>(std::max<std::int64_t>(c1[a] - c0[a] + 1, 0));
+        cells *= c1[a] < c0[a] ? 0.0 : static_cast<double>(c1[a] - c0[a] + 1);
       }
       if (cells == 0)
         continue;
