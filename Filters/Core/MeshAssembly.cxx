@@ -100,9 +100,7 @@ std::vector<std::int32_t> tetFaceTriangles(const std::vector<std::int32_t>& tets
   std::int32_t triangleCount)
 {
   const TriangleIndex index(triangles, triangleCount);
-  VertexId maxVertex = -1;
-  for (std::int64_t i = 0; i < 3 * static_cast<std::int64_t>(triangleCount); ++i)
-    maxVertex = std::max(maxVertex, triangles[i]);
+  const VertexId maxVertex = index.largestVertex();
   std::vector<std::int32_t> faceTriangle(tets.size(), -1);
   for (std::size_t t = 0; t < tets.size() / 4; ++t)
   {

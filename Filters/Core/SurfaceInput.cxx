@@ -2,6 +2,7 @@
 
 #include "Predicates.h"
 #include "RadixSort.h"
+#include "TriangleIndex.h"
 
 #include <algorithm>
 #include <cmath>
@@ -58,33 +59,18 @@ std::string buildSurfaceInput(const double* points,
     for (int e = 0; e < 3; ++e)
       edgeUses.push_back({ edgeKey(v[e], v[(e + 1) % 3]), t });
   }
-  // Duplicates among the triangles before it (sorted vertex triples, sorted), reported as
-  // the triangle-by-triangle scan would: at the first triangle repeating an earlier one.
+  // Duplicates among the triangles before it, reported as the triangle-by-triangle scan
+  // would: at the first triangle that is not the lowest id with its vertices.
   {
-    std::vector<std::array<VertexId, 4>> keyed(out.triangles.size());
+    const TriangleIndex index(out.triangles);
     for (std::size_t t = 0; t < out.triangles.size(); ++t)
     {
       const auto& v = out.triangles[t];
-      const auto k = sortedTriangle(v[0], v[1], v[2]);
-      keyed[t] = { k[0], k[1], k[2], static_cast<VertexId>(t) };
+      const std::int32_t first = index.find(v[0], v[1], v[2]);
+      if (first != static_cast<std::int32_t>(t))
+        return "triangles " + std::to_string(first) + " and " + std::to_string(t) +
+          " are duplicates";
     }
-    std::sort(keyed.begin(), keyed.end());
-    std::int32_t first = -1, repeat = firstBad;
-    for (std::size_t i = 1; i < keyed.size(); ++i)
-      if (std::equal(keyed[i].begin(), keyed[i].begin() + 3, keyed[i - 1].begin()) &&
-        keyed[i][3] < repeat)
-      {
-        // The earliest triangle of this run is the one an earlier scan would have kept.
-        std::size_t j = i - 1;
-        while (
-          j > 0 && std::equal(keyed[j - 1].begin(), keyed[j - 1].begin() + 3, keyed[i].begin()))
-          --j;
-        first = keyed[j][3];
-        repeat = keyed[i][3];
-      }
-    if (first >= 0)
-      return "triangles " + std::to_string(first) + " and " + std::to_string(repeat) +
-        " are duplicates";
   }
   if (firstBad < triangleCount)
     return error.str();

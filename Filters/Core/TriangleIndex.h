@@ -34,6 +34,9 @@ public:
     return -1;
   }
 
+  // The largest vertex id of the triangles (-1 for none).
+  VertexId largestVertex() const { return static_cast<VertexId>(start_.size()) - 2; }
+
 private:
   std::vector<std::int32_t> start_;             // entries of vertex v: [start_[v], start_[v+1])
   std::vector<std::array<VertexId, 2>> others_; // per entry, the other two vertices, sorted
