@@ -26,7 +26,8 @@ public:
     const std::vector<double>& faceSize,
     double slope);
 
-  // min(atMost, ceiling(p)): faces that cannot go below atMost are not measured.
+  // min(atMost, ceiling(p)): faces that cannot go below atMost are not measured. Not for
+  // concurrent calls (it fills a cache of per-cell lower bounds).
   double at(const double* p, double atMost) const;
 
   bool empty() const { return faces_.empty(); }
@@ -46,6 +47,17 @@ private:
     std::int32_t left, right;  // children when an inner node
   };
   std::int32_t build(std::int32_t first, std::int32_t count);
+  double cellLowerBound(const double* cellBox) const;
+
+  // Most queries return atMost (femur.off: 91% of 1.6M): no face comes below it, yet the tree
+  // search walks ~40 nodes to show it. A lattice of cells keeps, computed on first use, the
+  // smallest s_F + slope * (distance from the cell's box to F's box) over the faces: a lower
+  // bound of every bound the search tests for a point of the cell, so when it is not below
+  // atMost the search would measure no face and return atMost.
+  double cellOrigin_[3] = { 0, 0, 0 };
+  double cellSize_ = 0;
+  std::int32_t cellDims_[3] = { 0, 0, 0 };
+  mutable std::vector<double> cellBound_; // 0: not yet computed (bounds are > 0)
 
   double slope_ = 1;
   std::vector<Face> faces_;

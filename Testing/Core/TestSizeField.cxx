@@ -249,5 +249,26 @@ TEST(BoundarySizeCeiling, IsTheSmallestConeOverTheFaces)
   }
   EXPECT_GT(capped, 100); // both sides of atMost occur
   EXPECT_LT(capped, 1900);
+  // Points among the faces with bounds on both sides of the answer: the per-cell lower bounds
+  // that answer most queries without the tree must never answer one wrongly.
+  std::uniform_real_distribution<double> bound(0.01, 0.3);
+  int early = 0;
+  for (int i = 0; i < 20000; ++i)
+  {
+    const double p[3] = { unit(rng), unit(rng), unit(rng) };
+    double expected = 1e300;
+    for (int f = 0; f < 400; ++f)
+    {
+      if (f == 5)
+        continue;
+      const double* x = &points[9 * static_cast<std::size_t>(f)];
+      const double d = std::sqrt(geometry::pointTriangleDistanceSquared(p, x, x + 3, x + 6));
+      expected = std::min(expected, sizes[static_cast<std::size_t>(f)] + slope * d);
+    }
+    const double atMost = bound(rng);
+    early += expected >= atMost;
+    ASSERT_EQ(ceiling.at(p, atMost), std::min(expected, atMost)) << i;
+  }
+  EXPECT_GT(early, 2000);
   EXPECT_TRUE(BoundarySizeCeiling(points.data(), corners, sizes, 0.0).empty());
 }
