@@ -139,6 +139,7 @@ public:
       l.occupiedLo[a] = std::min(l.occupiedLo[a], cell[a]);
       l.occupiedHi[a] = std::max(l.occupiedHi[a], cell[a]);
     }
+    l.blocks.insert(cellKey(block(cell[0]), block(cell[1]), block(cell[2])));
     const std::uint64_t key = cellKey(cell[0], cell[1], cell[2]);
     const auto node = static_cast<std::int32_t>(nodes_.size());
     std::int32_t next = -1;
@@ -181,6 +182,15 @@ public:
             return true;
         continue;
       }
+      // Most classes have no vertex near p (femur.off: 88 cell probes per query, 12 vertices
+      // found): the blocks of 4x4x4 cells (1 or 2 per axis here) rule them out first.
+      bool occupied = false;
+      for (std::int64_t i = block(c0[0]); i <= block(c1[0]) && !occupied; ++i)
+        for (std::int64_t j = block(c0[1]); j <= block(c1[1]) && !occupied; ++j)
+          for (std::int64_t k = block(c0[2]); k <= block(c1[2]) && !occupied; ++k)
+            occupied = l.blocks.find(cellKey(i, j, k)) != nullptr;
+      if (!occupied)
+        continue;
       for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
         for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
           for (std::int64_t k = c0[2]; k <= c1[2]; ++k)
@@ -201,7 +211,8 @@ private:
   {
     double cell = 0;
     double maxSize = 0; // largest size given to a vertex of the class
-    EpochHashTable<std::uint64_t, std::int32_t, MixHash64> head; // a cell's latest node
+    EpochHashTable<std::uint64_t, std::int32_t, MixHash64> head;   // a cell's latest node
+    EpochHashTable<std::uint64_t, std::uint8_t, MixHash64> blocks; // blocks holding a vertex
     // The box of the cells holding the class's vertices (empty: lo > hi).
     std::int64_t occupiedLo[3] = { std::numeric_limits<std::int64_t>::max(),
       std::numeric_limits<std::int64_t>::max(),
@@ -242,6 +253,8 @@ private:
     { return static_cast<std::uint64_t>(x + (1 << 20)) & ((1u << 21) - 1); };
     return (part(i) << 42) | (part(j) << 21) | part(k);
   }
+  // The block of 4 cells (per axis) that holds cell c (floor division: c may be negative).
+  static std::int64_t block(std::int64_t c) { return c >= 0 ? c / 4 : -((3 - c) / 4); }
 
   double base_;
   double ratio_;
