@@ -7,6 +7,7 @@
 #include "MeshReport.h"
 #include "Report.h"
 
+#include "vtkAbstractArray.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDataSet.h"
@@ -17,6 +18,7 @@
 #include "vtkPolyData.h"
 #include "vtkTetMesher.h"
 #include "vtkUnstructuredGrid.h"
+#include "vtkVariant.h"
 
 #include <chrono>
 #include <cstdio>
@@ -116,6 +118,9 @@ int RunMeshWithVtk(const MeshOptions& o)
       summary.field = [mesh](const char* name) { return FieldValue(mesh, name); };
       summary.histogram = HistogramCounts(mesher->GetHistogramOutput());
       summary.seconds = seconds;
+      if (vtkAbstractArray* defects =
+            mesher->GetDefectsOutput()->GetFieldData()->GetAbstractArray("DefectSummary"))
+        summary.warnings = defects->GetVariantValue(0).ToString();
       ReportMesh(o, clock, summary);
       return 0;
     });

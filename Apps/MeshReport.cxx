@@ -171,6 +171,20 @@ void StageClock::Print() const
 
 void ReportMesh(const MeshOptions& options, StageClock& clock, const MeshSummary& summary)
 {
+  // Meshed all the same (the mesh does not depend on them), but said: the user may want
+  // to fix the surface for other tools.
+  for (std::size_t start = 0; start < summary.warnings.size();)
+  {
+    std::size_t end = summary.warnings.find('\n', start);
+    if (end == std::string::npos)
+      end = summary.warnings.size();
+    std::fprintf(stderr,
+      "tetmesher: %s: warning: %.*s\n",
+      options.input.c_str(),
+      static_cast<int>(end - start),
+      summary.warnings.c_str() + start);
+    start = end + 1;
+  }
   PrintSummaryLine(options.input,
     options.output,
     summary.tetCount,

@@ -66,6 +66,9 @@ struct MeshSummary
   FieldLookup field; // the mesh's field data
   std::vector<std::int64_t> histogram;
   double seconds = 0; // of the meshing
+  // The input check's warnings (inconsistent orientation, unused points), one per line, as
+  // the diagnosis words them; empty when there are none or the check was skipped.
+  std::string warnings;
 };
 
 // The end of a `mesh` run, the same on both paths: the one-line summary, then the quality

@@ -44,7 +44,7 @@ MesherResult meshSurface(const double* points,
   if (options.validateInput)
   {
     // Refuse what recovery cannot mesh (self-intersections, coincident points, fins) with a
-    // message naming the ids. Orientation does not matter to the mesher.
+    // message naming the ids. Warnings (orientation, unused points) do not matter to it.
     // Bounded: a triangle soup can have a quadratic number of intersecting pairs.
     DiagnosisOptions diagnosisOptions;
     diagnosisOptions.maxRecordsPerKind = 1000;
@@ -53,7 +53,7 @@ MesherResult meshSurface(const double* points,
     SurfaceDiagnosis errors;
     for (const DefectRecord& d : diagnosis.defects)
     {
-      if (!isWarning(d.kind) && d.kind != SurfaceDefect::InconsistentOrientation)
+      if (!isWarning(d.kind))
         errors.defects.push_back(d);
     }
     std::string defects = errors.defects.empty() ? std::string() : errors.summary();

@@ -726,7 +726,7 @@ const char* defectLabel(SurfaceDefect kind, bool plural)
 
 bool isWarning(SurfaceDefect kind)
 {
-  return kind == SurfaceDefect::UnusedPoint;
+  return kind == SurfaceDefect::UnusedPoint || kind == SurfaceDefect::InconsistentOrientation;
 }
 
 bool SurfaceDiagnosis::ok() const

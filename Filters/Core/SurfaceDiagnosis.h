@@ -15,10 +15,11 @@
 //    has the same region on both sides (a dangling fin, or an internal wall). Regions are found
 //    by sorting the triangles radially around every such edge, exactly;
 //  - inconsistent orientation: two triangles sharing a manifold edge traverse it in the same
-//    direction;
+//    direction (a warning: the mesh does not depend on the triangles' orientation, TetGen
+//    accepts such surfaces, and CGAL's *-shuffled test surfaces are exactly that);
 //  - self-intersections: two triangles that meet other than in a vertex or edge they share,
 //    coplanar pairs included (uniform grid over the triangle boxes, then exact tests);
-//  - unused points: a warning only (ok() stays true).
+//  - unused points: a warning only (ok() stays true, as for inconsistent orientation).
 #pragma once
 
 #include <cstddef>
@@ -37,7 +38,7 @@ enum class SurfaceDefect
   DuplicateTriangle,       // pointIds: the 3 sorted ids; triangleIds: all triangles on them
   OpenEdge,                // pointIds: {a,b} (a<b); triangleIds: {t}
   NonManifoldEdge,         // pointIds: {a,b}; triangleIds: every triangle on the edge
-  InconsistentOrientation, // pointIds: {a,b}; triangleIds: the two triangles
+  InconsistentOrientation, // pointIds: {a,b}; triangleIds: the two triangles (a warning)
   SelfIntersection,        // pointIds: the 6 vertex ids; triangleIds: {t1,t2} (t1<t2)
   UnusedPoint,             // pointIds: {p} (a warning: does not make ok() false)
   Empty,                   // no points or no triangles

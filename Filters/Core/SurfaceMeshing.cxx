@@ -51,7 +51,12 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
       input.points, input.pointCount, input.triangles, input.triangleCount, diagnosisOptions);
     if (!out.diagnosis.ok())
     {
-      std::string summary = out.diagnosis.summary(10);
+      // The defects that refuse the surface; its warnings stay in out.diagnosis only.
+      SurfaceDiagnosis errors;
+      for (const DefectRecord& record : out.diagnosis.defects)
+        if (!isWarning(record.kind))
+          errors.defects.push_back(record);
+      std::string summary = errors.summary(10);
       if (input.triangleIdsAreNotCellIds)
       {
         summary += "\n(triangle ids count the triangles of the input's polygons in order; "
