@@ -1,11 +1,13 @@
 // `tetmesher mesh` without VTK: .off, .stl or .vtp in, .vtu out, the core's whole job
-// (meshSurface, as vtkTetMesher runs it) in between. VTK's ~28 libraries are loaded
+// (meshSurface, as vtkTetMesher runs it) in between; polygons are triangulated as
+// vtkTetMesher does (triangulatePolygon). VTK's ~28 libraries are loaded
 // (libtetmesherVtk.so) only for what this path leaves to them: other formats, a background
-// mesh, polygons to triangulate, triangle strips, a .vtp encoding ReadVtp declines, an
+// mesh, cells of fewer than 3 points, triangle strips, a .vtp encoding ReadVtp declines, an
 // .stl ReadStl declines, and --with-vtk.
 #include "CommandLine.h"
 #include "MeshOptions.h"
 #include "MeshReport.h"
+#include "PolygonTriangulation.h"
 #include "SurfaceFiles.h"
 #include "SurfaceMeshing.h"
 
@@ -48,36 +50,52 @@ int MeshWithVtk(const MeshOptions& options)
     });
 }
 
-// The surface's triangles for the core, or false when it has cells that only the VTK path
-// handles (polygons of more than 3 points to triangulate, strips to refuse).
+// The surface's triangles for the core, its polygons of more than 3 points triangulated as
+// vtkTetMesher does, or false when it has cells that only the VTK path handles (cells of
+// fewer than 3 points and strips to refuse, ids beyond 32 bits).
 bool Triangles(const SurfaceData& surface,
   std::vector<std::int32_t>& triangles,
-  std::vector<std::int64_t>& cellOfTriangle)
+  std::vector<std::int64_t>& cellOfTriangle,
+  std::int64_t& triangulatedPolygons)
 {
   if (surface.stripCells > 0 || surface.PointCount() > std::numeric_limits<std::int32_t>::max() / 2)
     return false;
   const std::int64_t polygons = surface.PolygonCount();
-  triangles.resize(static_cast<std::size_t>(3 * polygons));
-  cellOfTriangle.resize(static_cast<std::size_t>(polygons));
+  triangles.clear();
+  cellOfTriangle.clear();
+  triangles.reserve(static_cast<std::size_t>(3 * polygons));
+  cellOfTriangle.reserve(static_cast<std::size_t>(polygons));
+  triangulatedPolygons = 0;
+  std::vector<std::int32_t> local;
   // Input cell ids of polygons come after the vertices and lines of a vtkPolyData.
   const std::int64_t firstPolyId = surface.vertexCells + surface.lineCells;
   for (std::int64_t p = 0; p < polygons; ++p)
   {
     const auto begin =
       static_cast<std::size_t>(surface.polygonOffsets[static_cast<std::size_t>(p)]);
-    if (surface.polygonOffsets[static_cast<std::size_t>(p + 1)] -
-        surface.polygonOffsets[static_cast<std::size_t>(p)] !=
-      3)
+    const std::int64_t size = surface.polygonOffsets[static_cast<std::size_t>(p + 1)] -
+      surface.polygonOffsets[static_cast<std::size_t>(p)];
+    if (size < 3)
       return false;
-    for (std::size_t k = 0; k < 3; ++k)
-    {
-      const std::int64_t id = surface.polygonPoints[begin + k];
-      if (id < std::numeric_limits<std::int32_t>::min() ||
-        id > std::numeric_limits<std::int32_t>::max())
+    const std::int64_t* ids = &surface.polygonPoints[begin];
+    for (std::int64_t k = 0; k < size; ++k)
+      if (ids[k] < std::numeric_limits<std::int32_t>::min() ||
+        ids[k] > std::numeric_limits<std::int32_t>::max())
         return false;
-      triangles[static_cast<std::size_t>(3 * p) + k] = static_cast<std::int32_t>(id);
+    local.clear();
+    if (size == 3)
+      local = { 0, 1, 2 };
+    else
+    {
+      triangulatePolygon(surface.points.data(), surface.PointCount(), ids, size, local);
+      ++triangulatedPolygons;
     }
-    cellOfTriangle[static_cast<std::size_t>(p)] = firstPolyId + p;
+    for (std::size_t k = 0; k < local.size(); k += 3)
+    {
+      for (std::size_t c = 0; c < 3; ++c)
+        triangles.push_back(static_cast<std::int32_t>(ids[local[k + c]]));
+      cellOfTriangle.push_back(firstPolyId + p);
+    }
   }
   return true;
 }
@@ -107,7 +125,8 @@ int RunMesh(int argc, char* argv[])
         return MeshWithVtk(options);
       std::vector<std::int32_t> triangles;
       std::vector<std::int64_t> cellOfTriangle;
-      if (!Triangles(surface, triangles, cellOfTriangle))
+      std::int64_t triangulatedPolygons = 0;
+      if (!Triangles(surface, triangles, cellOfTriangle, triangulatedPolygons))
         return MeshWithVtk(options);
       clock.Lap("reading");
 
@@ -117,7 +136,9 @@ int RunMesh(int argc, char* argv[])
       job.triangles = triangles.data();
       job.triangleCount = static_cast<std::int32_t>(triangles.size() / 3);
       job.cellOfTriangle = cellOfTriangle.data();
-      job.triangleIdsAreNotCellIds = surface.vertexCells + surface.lineCells > 0;
+      job.triangleIdsAreNotCellIds =
+        surface.vertexCells + surface.lineCells > 0 || triangulatedPolygons > 0;
+      job.triangulatedPolygons = static_cast<double>(triangulatedPolygons);
       job.sizeArrayName = options.size > 0 ? kConstantSizeArray : options.sizeArray;
       job.readSizeArray = [&](std::vector<double>& sizes)
       {

@@ -1,5 +1,6 @@
 #include "vtkTetMesher.h"
 
+#include "PolygonTriangulation.h"
 #include "SurfaceDiagnosis.h"
 #include "SurfaceMeshing.h"
 #include "TetQualityArrays.h"
@@ -23,7 +24,6 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkPolygon.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 #include "vtkTable.h"
@@ -376,13 +376,18 @@ int vtkTetMesher::RequestData(vtkInformation*,
   }
   // Input cell ids of polygons come after the vertices and lines of a vtkPolyData.
   const vtkIdType firstPolyId = input->GetNumberOfVerts() + input->GetNumberOfLines();
+  std::vector<double> coords(static_cast<std::size_t>(3 * pointCount));
+  for (vtkIdType p = 0; p < pointCount; ++p)
+  {
+    input->GetPoint(p, &coords[static_cast<std::size_t>(3 * p)]);
+  }
   std::vector<std::int32_t> triangles;
   std::vector<std::int64_t> cellOfTriangle; // the input cell each triangle comes from
   triangles.reserve(static_cast<std::size_t>(3 * input->GetNumberOfPolys()));
   vtkIdType triangulatedPolygons = 0;
   {
-    vtkNew<vtkPolygon> polygon;
-    vtkNew<vtkIdList> fan;
+    std::vector<std::int64_t> corners;
+    std::vector<std::int32_t> local;
     auto iter = vtk::TakeSmartPointer(input->GetPolys()->NewIterator());
     vtkIdType polyIndex = 0;
     for (iter->GoToFirstCell(); !iter->IsDoneWithTraversal(); iter->GoToNextCell(), ++polyIndex)
@@ -409,35 +414,22 @@ int vtkTetMesher::RequestData(vtkInformation*,
                     : ": only triangles are meshed (turn "
                       "TriangulatePolygons on, or use vtkTriangleFilter)"));
       }
-      // Split it into triangles of its own points (the surface keeps its points).
-      polygon->Initialize(static_cast<int>(size), ids, input->GetPoints());
-      if (!polygon->Triangulate(fan) || fan->GetNumberOfIds() != 3 * (size - 2))
-      {
-        // Ear cutting needs a planar polygon. Otherwise fan from its first point; should
-        // the fan fold over, the input check reports the resulting intersections.
-        fan->Reset();
-        for (vtkIdType k = 1; k + 1 < size; ++k)
-        {
-          fan->InsertNextId(0);
-          fan->InsertNextId(k);
-          fan->InsertNextId(k + 1);
-        }
-      }
-      for (vtkIdType k = 0; k < fan->GetNumberOfIds(); k += 3)
+      // Split it into triangles of its own points (the surface keeps its points), as the
+      // command line's lean path does.
+      corners.assign(ids, ids + size);
+      local.clear();
+      tetmesher::triangulatePolygon(coords.data(), pointCount, corners.data(), size, local);
+      for (std::size_t k = 0; k < local.size(); k += 3)
       {
         for (int c = 0; c < 3; ++c)
         {
-          triangles.push_back(static_cast<std::int32_t>(ids[fan->GetId(k + c)]));
+          triangles.push_back(
+            static_cast<std::int32_t>(corners[static_cast<std::size_t>(local[k + c])]));
         }
         cellOfTriangle.push_back(cellId);
       }
       ++triangulatedPolygons;
     }
-  }
-  std::vector<double> coords(static_cast<std::size_t>(3 * pointCount));
-  for (vtkIdType p = 0; p < pointCount; ++p)
-  {
-    input->GetPoint(p, &coords[static_cast<std::size_t>(3 * p)]);
   }
   const auto triangleCount = static_cast<std::int32_t>(triangles.size() / 3);
   lap("input conversion");

@@ -228,7 +228,8 @@ public:
   /**
    * Polygons with more than 3 points are split into triangles of their own points (on, the
    * default; their count is in the field data `TriangulatedPolygonCount`), or refused with
-   * an error naming the cell (off).
+   * an error naming the cell (off). The split is the core's triangulatePolygon (ear
+   * clipping in the polygon's plane, the best-shaped ear first), as on the command line.
    */
   vtkSetMacro(TriangulatePolygons, bool);
   vtkGetMacro(TriangulatePolygons, bool);

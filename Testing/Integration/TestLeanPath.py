@@ -242,7 +242,7 @@ with tempfile.TemporaryDirectory() as tmp:
     ascii_stl(ascii_nan, [("cube", cube[:11] + [((float("nan"), 1.0, 1.0), cube[11][1], cube[11][2])])])
     case("cube.stl, ASCII, a NaN corner", ["mesh", ascii_nan, "-o", "OUT", "-q"])
     # Left to VTK: an ASCII .stl VTK refuses (no endsolid) or whose line its buffer would split,
-    # a binary one with a stray byte, and polygons to triangulate.
+    # a binary one with a stray byte.
     unfinished = os.path.join(tmp, "cube-ascii-unfinished.stl")
     with open(plain) as f:
         text = f.read()
@@ -257,8 +257,12 @@ with tempfile.TemporaryDirectory() as tmp:
     stray = os.path.join(tmp, "cube-stray-byte.stl")
     write_binary_stl(stray, cube, tail=b"x")
     case("cube.stl with a stray byte (VTK path)", ["mesh", stray, "-o", "OUT", "-q"], expect_lean=False)
-    case("keyhole polygon (VTK path)", ["mesh", os.path.join(data, "defects", "keyhole-polygon.off"),
-                                        "-o", "OUT", "-q"], expect_lean=False)
+    # Polygons: both paths triangulate them with triangulatePolygon.
+    case("keyhole polygon", ["mesh", os.path.join(data, "defects", "keyhole-polygon.off"),
+                             "-o", "OUT", "-q"])
+    case("hole.off (quads)", ["mesh", d("hole.off"), "-o", "OUT", "-q", "--stats"])
+    case("double-torus-example.off (quads) boundary only",
+         ["mesh", d("double-torus-example.off"), "-o", "OUT", "-q", "--boundary-only"])
 
 if failures:
     print("\n\n".join(failures))

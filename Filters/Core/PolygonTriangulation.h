@@ -1,0 +1,29 @@
+// Triangles of an input polygon (a face of more than 3 points in a .off file or a vtkPolyData),
+// made of its own points: the surface keeps its points. The same function serves the command
+// line's lean path and vtkTetMesher, so both mesh a polygon alike, and neither needs VTK's
+// vtkPolygon (whose libraries took ~25 ms to load for a 40-triangle .off with quads).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace tetmesher
+{
+
+// Appends to `local` the n-2 triangles of the polygon whose i-th corner is
+// points[3 * ids[i] .. 3 * ids[i] + 2], as triples of corner indices 0..n-1 in the polygon's
+// orientation. Ear clipping in the plane that drops the largest component of the polygon's
+// (Newell) normal, with exact 2D orientations (Predicates.h): of the current ears the best
+// shaped is cut first (ties: the lowest index), so a quad gets the diagonal of the better
+// pair of triangles. A corner at the same coordinates as an ear's corner does not block it (a
+// polygon around a hole goes along its slit twice). A polygon with no ear left (one that
+// crosses itself, or folds out of its plane) or with a vanishing normal is fanned from its
+// first corner instead: the input check then names what is wrong with the triangles; so is
+// one with an id outside 0..pointCount-1 (the check names the id). n < 3 appends nothing.
+void triangulatePolygon(const double* points,
+  std::int64_t pointCount,
+  const std::int64_t* ids,
+  std::int64_t n,
+  std::vector<std::int32_t>& local);
+
+} // namespace tetmesher
