@@ -42,6 +42,13 @@ void triangulatePolygon(const double* points,
 {
   if (n < 3)
     return;
+  if (n > kMaxEarClippedCorners)
+  {
+    for (std::int64_t k = 1; k + 1 < n; ++k)
+      local.insert(
+        local.end(), { 0, static_cast<std::int32_t>(k), static_cast<std::int32_t>(k + 1) });
+    return;
+  }
   const int count = static_cast<int>(n);
   auto corner = [&](int i) { return points + 3 * ids[i]; };
   const std::size_t first = local.size();

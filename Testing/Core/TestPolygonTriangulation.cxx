@@ -254,4 +254,19 @@ TEST(PolygonTriangulation, KeyholeAroundAHoleAndSelfCrossingFan)
   EXPECT_EQ(tris, (std::vector<std::int32_t>{ 0, 1, 2, 0, 2, 3 }));
   triangulatePolygon(bow, 4, four, 2, tris);
   EXPECT_EQ(tris.size(), 6u);
+  // Beyond kMaxEarClippedCorners corners: the fan, at once.
+  std::vector<std::pair<double, double>> circle;
+  std::vector<double> many;
+  std::vector<std::int64_t> manyIds;
+  const int n = static_cast<int>(tetmesher::kMaxEarClippedCorners) + 1;
+  for (int i = 0; i < n; ++i)
+  {
+    many.insert(many.end(), { std::cos(2 * M_PI * i / n), std::sin(2 * M_PI * i / n), 0.0 });
+    manyIds.push_back(i);
+  }
+  tris.clear();
+  triangulatePolygon(many.data(), n, manyIds.data(), n, tris);
+  ASSERT_EQ(tris.size(), static_cast<std::size_t>(3 * (n - 2)));
+  EXPECT_EQ(tris[3 * (n - 3) + 2], n - 1);
+  EXPECT_EQ(tris[3 * (n - 3)], 0);
 }
