@@ -255,7 +255,6 @@ TEST(PolygonTriangulation, KeyholeAroundAHoleAndSelfCrossingFan)
   triangulatePolygon(bow, 4, four, 2, tris);
   EXPECT_EQ(tris.size(), 6u);
   // Beyond kMaxEarClippedCorners corners: the fan, at once.
-  std::vector<std::pair<double, double>> circle;
   std::vector<double> many;
   std::vector<std::int64_t> manyIds;
   const int n = static_cast<int>(tetmesher::kMaxEarClippedCorners) + 1;
