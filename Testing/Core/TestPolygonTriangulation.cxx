@@ -269,3 +269,29 @@ TEST(PolygonTriangulation, KeyholeAroundAHoleAndSelfCrossingFan)
   EXPECT_EQ(tris[3 * (n - 3) + 2], n - 1);
   EXPECT_EQ(tris[3 * (n - 3)], 0);
 }
+
+TEST(PolygonTriangulation, AnyPolygonGivesNMinus2TrianglesOfItsCorners)
+{
+  // Random polygons, most of them crossing themselves, with repeated and collinear corners
+  // (coordinates on a coarse grid) and out-of-plane noise: always n-2 triangles of corner
+  // indices in range, nothing else (the sanitizer builds run this too).
+  std::mt19937_64 rng(3);
+  std::uniform_int_distribution<int> grid(0, 4), size(3, 24), pick(0, 39);
+  std::uniform_real_distribution<double> noise(-1e-3, 1e-3);
+  std::vector<double> points;
+  for (int i = 0; i < 40; ++i)
+    points.insert(points.end(), { double(grid(rng)), double(grid(rng)), noise(rng) * (i % 3) });
+  for (int trial = 0; trial < 20000; ++trial)
+  {
+    const int n = size(rng);
+    std::vector<std::int64_t> ids;
+    for (int i = 0; i < n; ++i)
+      ids.push_back(pick(rng));
+    std::vector<std::int32_t> tris = { 7 }; // appended after what is there
+    triangulatePolygon(points.data(), 40, ids.data(), n, tris);
+    ASSERT_EQ(tris.size(), static_cast<std::size_t>(1 + 3 * (n - 2))) << trial;
+    ASSERT_EQ(tris[0], 7);
+    for (std::size_t k = 1; k < tris.size(); ++k)
+      ASSERT_TRUE(tris[k] >= 0 && tris[k] < n) << trial;
+  }
+}
