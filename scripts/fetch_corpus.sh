@@ -8,8 +8,9 @@
 #       also runs the input diagnosis on every fetched surface and writes
 #       CACHE_DIR/diagnosis.txt (which files are valid mesher input).
 #
-# Result: CACHE_DIR/surfaces/<source>/<name>.{off,stl} and CACHE_DIR/MANIFEST.tsv (source,
-# file, bytes, licence). Sources (Debian 12 packages; see Data/README.md):
+# Result: CACHE_DIR/surfaces/<source>/<name>.{off,stl}, the same as links
+# CACHE_DIR/all/<source>_<name> (for scripts/benchmark.py --data CACHE_DIR/all) and
+# CACHE_DIR/MANIFEST.tsv (source, file, bytes, licence). Sources (Debian 12 packages; see Data/README.md):
 #   libcgal-demo  data/meshes/*.off|*.stl from CGAL's data.tar.gz (about 150 files, 39 MB)
 #   gmsh-doc      the .stl demos and tutorial data (gunzipped)
 #   netgen-doc    the .stl examples (hinge, part1)
@@ -96,6 +97,14 @@ fi
 
 count=$(($(wc -l <"$cache/MANIFEST.tsv") - 1))
 echo "$count surfaces in $cache/surfaces (manifest: $cache/MANIFEST.tsv)"
+
+# All of them in one folder, as SOURCE_NAME links (scripts/benchmark.py --data reads one
+# folder): cache/corpus/all.
+rm -rf "$cache/all"
+mkdir -p "$cache/all"
+tail -n +2 "$cache/MANIFEST.tsv" | while IFS=$'\t' read -r src file _; do
+  ln -s "../surfaces/$src/$file" "$cache/all/${src}_$file"
+done
 
 # Optional: diagnose every surface with the C++ input diagnosis.
 if [[ -n "${TETMESHER_DIAGNOSE:-}" ]]; then
