@@ -229,19 +229,24 @@ TEST(BoundarySizeCeiling, IsTheSmallestConeOverTheFaces)
   const double slope = 0.5;
   const BoundarySizeCeiling ceiling(points.data(), corners, sizes, slope);
   ASSERT_FALSE(ceiling.empty());
-  int capped = 0;
-  for (int i = 0; i < 2000; ++i)
+  auto bruteForce = [&](const double* p)
   {
-    const double p[3] = { around(rng), around(rng), around(rng) };
-    double expected = 1e300;
+    double smallest = 1e300;
     for (int f = 0; f < 400; ++f)
     {
       if (f == 5)
         continue;
       const double* x = &points[9 * static_cast<std::size_t>(f)];
       const double d = std::sqrt(geometry::pointTriangleDistanceSquared(p, x, x + 3, x + 6));
-      expected = std::min(expected, sizes[static_cast<std::size_t>(f)] + slope * d);
+      smallest = std::min(smallest, sizes[static_cast<std::size_t>(f)] + slope * d);
     }
+    return smallest;
+  };
+  int capped = 0;
+  for (int i = 0; i < 2000; ++i)
+  {
+    const double p[3] = { around(rng), around(rng), around(rng) };
+    const double expected = bruteForce(p);
     ASSERT_EQ(ceiling.at(p, 1e300), expected) << i;
     const double atMost = 0.15;
     capped += expected >= atMost;
@@ -256,15 +261,7 @@ TEST(BoundarySizeCeiling, IsTheSmallestConeOverTheFaces)
   for (int i = 0; i < 20000; ++i)
   {
     const double p[3] = { unit(rng), unit(rng), unit(rng) };
-    double expected = 1e300;
-    for (int f = 0; f < 400; ++f)
-    {
-      if (f == 5)
-        continue;
-      const double* x = &points[9 * static_cast<std::size_t>(f)];
-      const double d = std::sqrt(geometry::pointTriangleDistanceSquared(p, x, x + 3, x + 6));
-      expected = std::min(expected, sizes[static_cast<std::size_t>(f)] + slope * d);
-    }
+    const double expected = bruteForce(p);
     const double atMost = bound(rng);
     early += expected >= atMost;
     ASSERT_EQ(ceiling.at(p, atMost), std::min(expected, atMost)) << i;
