@@ -975,7 +975,8 @@ TEST(SurfaceDiagnosis, InvalidCorpusFiles)
     EXPECT_EQ(d.count(SurfaceDefect::SelfIntersection), 0) << d.summary();
   }
   {
-    // Overlapping letters with two zero-area triangles.
+    // Non-convex letters as polygons, read here as fans: two zero-area triangles and fan
+    // triangles that cross (cut by their ears, as the mesher does, the surface is valid).
     Surface s;
     ASSERT_TRUE(readSurface((dir / "mpi.off").string(), s));
     const SurfaceDiagnosis d = s.diagnose();

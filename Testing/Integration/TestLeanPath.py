@@ -261,6 +261,8 @@ with tempfile.TemporaryDirectory() as tmp:
     case("keyhole polygon", ["mesh", os.path.join(data, "defects", "keyhole-polygon.off"),
                              "-o", "OUT", "-q"])
     case("hole.off (quads)", ["mesh", d("hole.off"), "-o", "OUT", "-q", "--stats"])
+    case("mpi.off (non-convex polygons) boundary only",
+         ["mesh", d(os.path.join("invalid", "mpi.off")), "-o", "OUT", "-q", "--boundary-only"])
     case("double-torus-example.off (quads) boundary only",
          ["mesh", d("double-torus-example.off"), "-o", "OUT", "-q", "--boundary-only"])
 
