@@ -191,8 +191,7 @@ int RunMesh(int argc, char* argv[])
       };
       summary.histogram = mesh.quality.histogram;
       summary.seconds = seconds;
-      if (!mesh.diagnosis.defects.empty())
-        summary.warnings = mesh.diagnosis.summary(10);
+      summary.warnings = mesh.warnings;
       ReportMesh(options, clock, summary);
       return 0;
     });

@@ -7,7 +7,6 @@
 #include "MeshReport.h"
 #include "Report.h"
 
-#include "vtkAbstractArray.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDataSet.h"
@@ -18,7 +17,6 @@
 #include "vtkPolyData.h"
 #include "vtkTetMesher.h"
 #include "vtkUnstructuredGrid.h"
-#include "vtkVariant.h"
 
 #include <chrono>
 #include <cstdio>
@@ -118,9 +116,7 @@ int RunMeshWithVtk(const MeshOptions& o)
       summary.field = [mesh](const char* name) { return FieldValue(mesh, name); };
       summary.histogram = HistogramCounts(mesher->GetHistogramOutput());
       summary.seconds = seconds;
-      if (vtkAbstractArray* defects =
-            mesher->GetDefectsOutput()->GetFieldData()->GetAbstractArray("DefectSummary"))
-        summary.warnings = defects->GetVariantValue(0).ToString();
+      summary.warnings = mesher->GetLastWarnings();
       ReportMesh(o, clock, summary);
       return 0;
     });

@@ -178,9 +178,12 @@ void ReportMesh(const MeshOptions& options, StageClock& clock, const MeshSummary
     std::size_t end = summary.warnings.find('\n', start);
     if (end == std::string::npos)
       end = summary.warnings.size();
+    // A note in parentheses (what the triangle ids count) belongs to the warnings above it.
+    const bool note = summary.warnings[start] == '(';
     std::fprintf(stderr,
-      "tetmesher: %s: warning: %.*s\n",
+      "tetmesher: %s: %s%.*s\n",
       options.input.c_str(),
+      note ? "" : "warning: ",
       static_cast<int>(end - start),
       summary.warnings.c_str() + start);
     start = end + 1;

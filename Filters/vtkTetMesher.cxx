@@ -345,6 +345,7 @@ int vtkTetMesher::RequestData(vtkInformation*,
   vtkTable* histogram = vtkTable::GetData(outputVector, 1);
   vtkPolyData* defects = vtkPolyData::GetData(outputVector, 2);
   this->LastError.clear();
+  this->LastWarnings.clear();
   this->StageTimings.clear();
   auto lapStart = std::chrono::steady_clock::now();
   auto lap = [this, &lapStart](const std::string& stage)
@@ -385,6 +386,15 @@ int vtkTetMesher::RequestData(vtkInformation*,
   std::vector<std::int64_t> cellOfTriangle; // the input cell each triangle comes from
   triangles.reserve(static_cast<std::size_t>(3 * input->GetNumberOfPolys()));
   vtkIdType triangulatedPolygons = 0;
+  // An id beyond 32 bits becomes -1, which the input check names as out of range (a cast would
+  // wrap it to a valid id).
+  auto pointId = [](vtkIdType id)
+  {
+    return id < std::numeric_limits<std::int32_t>::min() ||
+        id > std::numeric_limits<std::int32_t>::max()
+      ? std::int32_t(-1)
+      : static_cast<std::int32_t>(id);
+  };
   {
     std::vector<std::int64_t> corners;
     std::vector<std::int32_t> local;
@@ -398,10 +408,7 @@ int vtkTetMesher::RequestData(vtkInformation*,
       const vtkIdType cellId = firstPolyId + polyIndex;
       if (size == 3)
       {
-        triangles.insert(triangles.end(),
-          { static_cast<std::int32_t>(ids[0]),
-            static_cast<std::int32_t>(ids[1]),
-            static_cast<std::int32_t>(ids[2]) });
+        triangles.insert(triangles.end(), { pointId(ids[0]), pointId(ids[1]), pointId(ids[2]) });
         cellOfTriangle.push_back(cellId);
         continue;
       }
@@ -423,8 +430,7 @@ int vtkTetMesher::RequestData(vtkInformation*,
       {
         for (int c = 0; c < 3; ++c)
         {
-          triangles.push_back(
-            static_cast<std::int32_t>(corners[static_cast<std::size_t>(local[k + c])]));
+          triangles.push_back(pointId(corners[static_cast<std::size_t>(local[k + c])]));
         }
         cellOfTriangle.push_back(cellId);
       }
@@ -478,6 +484,7 @@ int vtkTetMesher::RequestData(vtkInformation*,
   defects->Initialize();
   const tetmesher::SurfaceMeshOutput result = tetmesher::meshSurface(job, settings);
   this->StageTimings += result.stageTimings;
+  this->LastWarnings = result.warnings;
   if (this->CheckInput)
   {
     FillDefects(result.diagnosis, input, cellOfTriangle, defects);

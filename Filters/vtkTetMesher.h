@@ -250,6 +250,12 @@ public:
   const char* GetLastError() { return this->LastError.c_str(); }
 
   /**
+   * The input check's warnings of the last run (inconsistently oriented triangles, unused
+   * points: the mesh is made all the same), one line per kind; empty when there are none.
+   */
+  const char* GetLastWarnings() { return this->LastWarnings.c_str(); }
+
+  /**
    * Wall time per stage of the last run, one line per stage "seconds<TAB>stage", in order
    * (input conversion and check, the core stages, output conversion, quality arrays).
    */
@@ -296,6 +302,7 @@ protected:
   bool TriangulatePolygons = true;
   int NumberOfBins{};
   std::string LastError;
+  std::string LastWarnings;
   std::string StageTimings;
 
 private:

@@ -56,7 +56,8 @@ BoundarySizeCeiling::BoundarySizeCeiling(const double* points,
     build(0, static_cast<std::int32_t>(faces_.size()));
     // Cells twice the median face size (femur.off's lattice candidates 0.69 -> 0.53 s at 1x,
     // 0.57 s at 2x, but fandisk.off's 0.075 -> 0.083 s at 1x, 0.066 s at 2x: small cells cost
-    // more bounds to compute than they save), at most kMaxCells over the faces' box.
+    // more bounds to compute than they save), at most 4 kMaxCells over the faces' box (wider
+    // cells where that is exceeded: a flat domain). None when the box is not finite.
     std::vector<double> sizes;
     for (const Face& f : faces_)
       sizes.push_back(f.size);
@@ -69,16 +70,23 @@ BoundarySizeCeiling::BoundarySizeCeiling(const double* points,
       volume *= extent[a];
     }
     cellSize_ = std::max(2 * sizes[sizes.size() / 2], std::cbrt(volume / kMaxCells));
-    double cells = 1;
+    auto cellCount = [&]()
+    {
+      double cells = 1;
+      for (int a = 0; a < 3; ++a)
+        cells *= std::floor(extent[a] / cellSize_) + 1;
+      return cells;
+    };
+    if (!std::isfinite(cellSize_) || !(cellSize_ > 0) || !std::isfinite(volume))
+      return;
+    while (!(cellCount() <= 4 * kMaxCells))
+      cellSize_ *= 2;
     for (int a = 0; a < 3; ++a)
     {
       cellOrigin_[a] = box[a];
-      cellDims_[a] =
-        static_cast<std::int32_t>(std::min(extent[a] / cellSize_ + 1, 2.0 * kMaxCells));
-      cells *= cellDims_[a];
+      cellDims_[a] = static_cast<std::int32_t>(std::floor(extent[a] / cellSize_) + 1);
     }
-    if (std::isfinite(cellSize_) && cellSize_ > 0 && cells <= 4 * kMaxCells)
-      cellBound_.assign(static_cast<std::size_t>(cells), 0.0);
+    cellBound_.assign(static_cast<std::size_t>(cellCount()), 0.0);
   }
 }
 

@@ -3,6 +3,7 @@
 #include "Predicates.h"
 
 #include <cmath>
+#include <limits>
 
 namespace tetmesher
 {
@@ -40,7 +41,7 @@ void triangulatePolygon(const double* points,
   std::int64_t n,
   std::vector<std::int32_t>& local)
 {
-  if (n < 3)
+  if (n < 3 || n > std::numeric_limits<std::int32_t>::max())
     return;
   if (n > kMaxEarClippedCorners)
   {
@@ -98,6 +99,9 @@ void triangulatePolygon(const double* points,
   }
   std::vector<char> alive(prev.size(), 1), ear(prev.size(), 0);
   std::vector<double> shape(prev.size(), 0);
+  // Orientation tests left: past the bound, the fan (pathological polygons re-classify
+  // corners many times).
+  std::int64_t work = kEarClippingWork * n * n;
   auto classify = [&](int v)
   {
     const int p = prev[static_cast<std::size_t>(v)], q = next[static_cast<std::size_t>(v)];
@@ -105,9 +109,11 @@ void triangulatePolygon(const double* points,
     const double* b = corner(v);
     const double* c = corner(q);
     bool isEar = turn(a, b, c) > 0;
+    --work;
     for (int w = next[static_cast<std::size_t>(q)]; isEar && w != p;
          w = next[static_cast<std::size_t>(w)])
     {
+      work -= 3;
       const double* x = corner(w);
       if (samePoint(x, a) || samePoint(x, b) || samePoint(x, c))
         continue;
@@ -127,21 +133,7 @@ void triangulatePolygon(const double* points,
       if (alive[i] && ear[i] && (best < 0 || shape[i] > shape[static_cast<std::size_t>(best)]))
         best = v;
     }
-    if (best < 0)
-    {
-      // Cutting an ear changes only its neighbours' status in a simple polygon; before
-      // giving up, look at every corner again.
-      for (int v = 0; v < count; ++v)
-        if (alive[static_cast<std::size_t>(v)])
-        {
-          classify(v);
-          if (ear[static_cast<std::size_t>(v)] &&
-            (best < 0 ||
-              shape[static_cast<std::size_t>(v)] > shape[static_cast<std::size_t>(best)]))
-            best = v;
-        }
-    }
-    if (best < 0)
+    if (best < 0 || work < 0)
     {
       fan();
       return;
@@ -153,6 +145,20 @@ void triangulatePolygon(const double* points,
     prev[static_cast<std::size_t>(q)] = p;
     classify(p);
     classify(q);
+    // The cut corner no longer blocks the corners whose triangle held it: they may be ears now.
+    const double* cut = corner(best);
+    for (int w = next[static_cast<std::size_t>(q)]; w != p; w = next[static_cast<std::size_t>(w)])
+    {
+      const auto i = static_cast<std::size_t>(w);
+      if (ear[i])
+        continue;
+      const double* a = corner(prev[i]);
+      const double* b = corner(w);
+      const double* c = corner(next[i]);
+      work -= 3;
+      if (turn(a, b, cut) >= 0 && turn(b, c, cut) >= 0 && turn(c, a, cut) >= 0)
+        classify(w);
+    }
   }
   int a = 0;
   while (!alive[static_cast<std::size_t>(a)])

@@ -19,10 +19,13 @@ namespace tetmesher
 // polygon around a hole goes along its slit twice). A polygon with no ear left (one that
 // crosses itself, or folds out of its plane) or with a vanishing normal is fanned from its
 // first corner instead: the input check then names what is wrong with the triangles; so is
-// one with an id outside 0..pointCount-1 (the check names the id), and one of more than
+// one with an id outside 0..pointCount-1 (the check names the id), one of more than
 // kMaxEarClippedCorners corners (ear clipping takes time quadratic in n; a fuzzed face of a
-// million corners must not hang). n < 3 appends nothing.
-constexpr std::int64_t kMaxEarClippedCorners = 4096;
+// million corners must not hang), and one whose clipping exceeds a work bound of
+// kEarClippingWork * n^2 orientation tests. n < 3, or n beyond 32-bit indices, appends
+// nothing.
+constexpr std::int64_t kMaxEarClippedCorners = 1024;
+constexpr std::int64_t kEarClippingWork = 32;
 
 void triangulatePolygon(const double* points,
   std::int64_t pointCount,

@@ -45,6 +45,10 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
 
   if (settings.checkInput)
   {
+    const std::string idNote = input.triangleIdsAreNotCellIds
+      ? "\n(triangle ids count the triangles of the input's polygons in order; input cell ids "
+        "differ when the input has vertices, lines or polygons)"
+      : "";
     DiagnosisOptions diagnosisOptions;
     diagnosisOptions.maxRecordsPerKind = 1000;
     out.diagnosis = diagnoseSurface(
@@ -56,14 +60,10 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
       for (const DefectRecord& record : out.diagnosis.defects)
         if (!isWarning(record.kind))
           errors.defects.push_back(record);
-      std::string summary = errors.summary(10);
-      if (input.triangleIdsAreNotCellIds)
-      {
-        summary += "\n(triangle ids count the triangles of the input's polygons in order; "
-                   "input cell ids differ when the input has vertices, lines or polygons)";
-      }
-      return fail("the input surface cannot be meshed:\n" + summary);
+      return fail("the input surface cannot be meshed:\n" + errors.summary(10) + idNote);
     }
+    if (!out.diagnosis.defects.empty())
+      out.warnings = out.diagnosis.summary(10) + idNote;
     lap("input diagnosis");
   }
   bool aborted = !progress(0.05);

@@ -68,7 +68,10 @@ struct SurfaceMeshOutput
 {
   bool ok = false;
   std::string error;
-  SurfaceDiagnosis diagnosis;      // of the input, when it was checked
+  SurfaceDiagnosis diagnosis; // of the input, when it was checked
+  // Its warnings (inconsistent orientation, unused points), one line per kind, with the note
+  // on triangle ids when they are not the input's cell ids; empty when there are none.
+  std::string warnings;
   VolumeMeshResult mesh;           // points (the first ones the input's), regionIds, vertexSize (h)
   std::vector<std::int64_t> cells; // 4 point ids per tet, VTK_TETRA order
   std::vector<std::int64_t> inputFaceIds; // 4 per tet: the input cell of face i (opposite

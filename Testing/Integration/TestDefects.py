@@ -182,6 +182,9 @@ def test_python(folder):
         mesh, defects = mesher.GetOutput(), mesher.GetDefectsOutput()
         if summary is None:
             check(mesher.GetLastError() in ("", None), f"Python {name}: {mesher.GetLastError()!r}")
+            warning = WARNINGS.get(name, ("", []))[0]
+            check(mesher.GetLastWarnings() == warning,
+                  f"Python {name}: GetLastWarnings() {mesher.GetLastWarnings()!r}, expected {warning!r}")
             regions = mesh.GetCellData().GetArray("RegionId")
             check(mesh.GetNumberOfCells() > 0 and regions is not None and
                   regions.GetRange() == (0.0, extra - 1.0),
