@@ -63,7 +63,7 @@ struct OptimizationOptions
   // lifts the tets on the surface (Data/gear.vtp: 7.6k -> 18k tets, 5.7 -> 25 s), and
   // doubles the time of fine meshes for a gain in the third decimal of Q min. Bounded, gear
   // gets 270 more tets and Q min 0.056 instead of 0.0075, and the optimiser, no longer
-  // stalled, works up to its time bound (VolumeMeshOptions::optimizationTimeFactor).
+  // stalled, works up to its work bound (VolumeMeshOptions::optimizationPolls).
   int maxInsertedVertices = -1;
   int maxEdgeRing = 10; // longest edge ring that edge removal retriangulates
   int maxMultiFace = 8; // most faces one multi-face removal takes out (1: 2-3 flips only)

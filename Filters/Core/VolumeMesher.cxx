@@ -127,13 +127,12 @@ VolumeMeshResult meshVolume(const double* points,
   {
     // Quality in units of h only when a size field was computed by refinement.
     const std::vector<double>* h = options.refine ? &size : nullptr;
-    const double before =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double budget = options.optimizationTimeFactor > 0
-      ? std::max(10.0, options.optimizationTimeFactor * before)
-      : 0;
-    const auto optimizationStart = std::chrono::steady_clock::now();
-    bool outOfTime = false, aborted = false;
+    const std::int64_t budget = options.optimizationPolls < 0 ? -1
+                                                              : options.optimizationPolls +
+        static_cast<std::int64_t>(options.optimizationPollsPerTet *
+          static_cast<double>(result.tetsBeforeOptimization.size() / 4));
+    std::int64_t polls = 0;
+    bool outOfWork = false, aborted = false;
     auto stageProgress = subProgress(progress, refineEnd, 1.0);
     result.optimizationStats = optimizeMesh(mesh,
       options.optimization,
@@ -145,18 +144,16 @@ VolumeMeshResult meshVolume(const double* points,
           aborted = true;
           return false;
         }
-        if (budget > 0 &&
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - optimizationStart)
-              .count() > budget)
+        if (budget >= 0 && ++polls > budget)
         {
-          outOfTime = true;
+          outOfWork = true;
           return false;
         }
         return true;
       });
-    // Stopped by its time budget, the optimiser leaves a valid mesh: keep it.
-    result.optimizationStoppedByTime = outOfTime && !aborted;
-    if (!result.optimizationStats.ok && !result.optimizationStoppedByTime)
+    // Stopped by its work bound, the optimiser leaves a valid mesh: keep it.
+    result.optimizationStoppedByBound = outOfWork && !aborted;
+    if (!result.optimizationStats.ok && !result.optimizationStoppedByBound)
     {
       result.error = "quality optimisation failed: " + result.optimizationStats.error;
       return result;

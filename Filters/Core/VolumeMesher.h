@@ -29,11 +29,17 @@ struct VolumeMeshOptions
   RefinementOptions refinement;
   bool optimize = true;
   OptimizationOptions optimization;
-  // Optimisation may take at most this multiple of the time of the stages before it (at
-  // least 10 s); then it stops, keeping the valid, partly improved mesh. <= 0: no
-  // bound. Tets it cannot fix (e.g. all four vertices on the surface) would otherwise make
-  // it spin on surfaces with poor triangles.
-  double optimizationTimeFactor = 20.0;
+  // A bound on the optimiser's work, counted in its progress polls (one per 256 moves tried,
+  // and one per pass): at most optimizationPolls + (tets before optimisation) x
+  // optimizationPollsPerTet of them, then it stops, keeping the valid, partly improved mesh.
+  // Tets it cannot fix (e.g. all four vertices on the surface) would otherwise make it spin
+  // on surfaces with poor triangles. Counted in work, not in wall time, so that the same input
+  // gives the same mesh on any machine and under any load (a bound of 20x the time of the
+  // stages before it stopped CGAL's handle.off at ~14 s, at a different move on each run).
+  // None of the Data/ surfaces at their default size reaches 2048 + tets / 64 (alternator
+  // comes nearest: 2304 polls of 2822). optimizationPolls < 0: no bound.
+  std::int64_t optimizationPolls = 2048;
+  double optimizationPollsPerTet = 1.0 / 64;
   // Wanted size h at each input point (raw, before refinement.size scaling); empty or
   // entries <= 0: the mean length of the boundary edges at that point.
   std::vector<double> inputSizes;
@@ -57,7 +63,7 @@ struct VolumeMeshResult
   MesherResult boundaryStats; // timings and counters of the boundary stage
   RefinementResult refinementStats;
   OptimizationResult optimizationStats;
-  bool optimizationStoppedByTime = false;
+  bool optimizationStoppedByBound = false; // the work bound above
   double seconds = 0;
   StageTimes stageSeconds;
 };

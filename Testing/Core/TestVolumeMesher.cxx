@@ -167,6 +167,35 @@ TEST(VolumeMesher, Deterministic)
   EXPECT_EQ(checkMesh(s, asMesherResult(a, s.pointCount()), sign, 1), "");
 }
 
+TEST(VolumeMesher, OptimisationWorkBoundStopsAtTheSameMove)
+{
+  // The optimiser's bound counts its work, not wall time: stopped at its first poll it stops
+  // at the same move on every run, and the mesh is valid, exact and complete.
+  Surface s = icosphere(2);
+  VolumeMeshOptions bounded;
+  bounded.optimizationPolls = 0;
+  bounded.optimizationPollsPerTet = 0;
+  bounded.refinement.size.scale = 0.3;
+  VolumeMeshResult a =
+    meshVolume(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), bounded);
+  VolumeMeshResult b =
+    meshVolume(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), bounded);
+  ASSERT_TRUE(a.ok) << a.error;
+  EXPECT_TRUE(a.optimizationStoppedByBound);
+  EXPECT_EQ(a.points, b.points);
+  EXPECT_EQ(a.tets, b.tets);
+  std::vector<int> sign(static_cast<std::size_t>(s.triangleCount()), 1);
+  EXPECT_EQ(checkMesh(s, asMesherResult(a, s.pointCount()), sign, 1), "");
+  // Unbounded (and by default) this surface finishes well within the bound.
+  VolumeMeshOptions unbounded = bounded;
+  unbounded.optimizationPolls = -1;
+  VolumeMeshResult c =
+    meshVolume(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), unbounded);
+  ASSERT_TRUE(c.ok) << c.error;
+  EXPECT_FALSE(c.optimizationStoppedByBound);
+  EXPECT_NE(c.tets, a.tets); // the bound did stop it early
+}
+
 namespace
 {
 Surface transformed(const Surface& s, double scale, double shift)
