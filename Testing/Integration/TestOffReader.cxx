@@ -3,6 +3,7 @@
 // keyword's line or the next, signs, exponents, odd tokens), the fast one either declines or
 // gives the same points bit for bit and the same polygons; it must accept the usual files.
 //   TestOffReader WORK_DIR FILE.off...
+#include "IntegrationCheck.h"
 #include "SurfaceFiles.h"
 
 #include <cstring>
@@ -13,16 +14,8 @@
 
 namespace
 {
-int failures = 0;
-
-void Check(bool ok, const std::string& what)
-{
-  if (!ok)
-  {
-    ++failures;
-    std::cout << "FAIL " << what << "\n";
-  }
-}
+using tetmesher::testing::Check;
+using tetmesher::testing::failures;
 
 // 'accepted': whether the fast parser took the file (it must agree with the line parser).
 void Compare(const std::string& path, const std::string& name, bool mustAccept)
@@ -105,6 +98,6 @@ int main(int argc, char* argv[])
     std::ofstream(path, std::ios::binary) << c.text;
     Compare(path, c.name, c.mustAccept);
   }
-  std::cout << (failures ? "FAILED" : "passed") << " (" << failures << " failures)\n";
-  return failures ? 1 : 0;
+  std::cout << (failures() ? "FAILED" : "passed") << " (" << failures() << " failures)\n";
+  return failures() ? 1 : 0;
 }

@@ -5,6 +5,7 @@
 // ReadVtp must give the same points bit for bit, the same polygons, cell counts and point
 // arrays. Encodings it does not handle (lz4, lzma, big-endian) must be declined, not misread.
 //   TestSurfaceFiles WORK_DIR FILE.vtp...
+#include "IntegrationCheck.h"
 #include "SurfaceFiles.h"
 
 #include "vtkCellArray.h"
@@ -29,16 +30,8 @@
 
 namespace
 {
-int failures = 0;
-
-void Check(bool ok, const std::string& what)
-{
-  if (!ok)
-  {
-    ++failures;
-    std::cout << "FAIL " << what << "\n";
-  }
-}
+using tetmesher::testing::Check;
+using tetmesher::testing::failures;
 
 bool SameBits(double a, double b)
 {
@@ -233,6 +226,6 @@ int main(int argc, char* argv[])
     }
   }
   std::cout << "TestSurfaceFiles: " << argc - 2 << " files, " << variants << " variants, "
-            << declined << " declined, " << failures << " failure(s)\n";
-  return failures == 0 ? 0 : 1;
+            << declined << " declined, " << failures() << " failure(s)\n";
+  return failures() == 0 ? 0 : 1;
 }
