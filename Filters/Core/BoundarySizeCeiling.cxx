@@ -92,29 +92,38 @@ BoundarySizeCeiling::BoundarySizeCeiling(const double* points,
 
 double BoundarySizeCeiling::cellLowerBound(const double* cellBox) const
 {
-  double best = std::numeric_limits<double>::infinity();
+  return search(
+    std::numeric_limits<double>::infinity(),
+    [&](const double* box) { return boxBoxDistance(cellBox, box); },
+    [&](const Face& f, double best)
+    { return std::min(best, f.size + slope_ * boxBoxDistance(cellBox, f.box)); });
+}
+
+template<typename BoxDistance, typename FaceValue>
+double BoundarySizeCeiling::search(double best,
+  const BoxDistance& boxDistance,
+  const FaceValue& faceValue) const
+{
   std::int32_t stack[128];
   int top = 0;
   stack[top++] = 0;
   while (top > 0)
   {
     const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
-    if (!(node.minSize + slope_ * boxBoxDistance(cellBox, node.box) < best))
+    if (!(node.minSize + slope_ * boxDistance(node.box) < best))
       continue;
     if (node.count > 0)
     {
       for (std::int32_t i = node.first; i < node.first + node.count; ++i)
-      {
-        const Face& f = faces_[static_cast<std::size_t>(i)];
-        best = std::min(best, f.size + slope_ * boxBoxDistance(cellBox, f.box));
-      }
+        best = faceValue(faces_[static_cast<std::size_t>(i)], best);
       continue;
     }
+    // The nearer child last on the stack, so it is visited first and tightens the bound.
     const Node& l = nodes_[static_cast<std::size_t>(node.left)];
     const Node& r = nodes_[static_cast<std::size_t>(node.right)];
-    const bool leftNearer = boxBoxDistance(cellBox, l.box) <= boxBoxDistance(cellBox, r.box);
+    const bool leftNearer = boxDistance(l.box) <= boxDistance(r.box);
     if (top + 2 > 128)
-      continue;
+      continue; // deeper than any balanced tree of 2^31 faces; cannot happen
     stack[top++] = leftNearer ? node.right : node.left;
     stack[top++] = leftNearer ? node.left : node.right;
   }
@@ -206,38 +215,17 @@ double BoundarySizeCeiling::at(const double* p, double atMost) const
         return atMost;
     }
   }
-  std::int32_t stack[128];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0)
-  {
-    const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
-    if (!(node.minSize + slope_ * geometry::pointBoxDistance(p, node.box) < best))
-      continue;
-    if (node.count > 0)
+  return search(
+    best,
+    [p](const double* box) { return geometry::pointBoxDistance(p, box); },
+    [&](const Face& f, double bound)
     {
-      for (std::int32_t i = node.first; i < node.first + node.count; ++i)
-      {
-        const Face& f = faces_[static_cast<std::size_t>(i)];
-        if (!(f.size + slope_ * geometry::pointBoxDistance(p, f.box) < best))
-          continue;
-        const double d = std::sqrt(
-          geometry::pointTriangleDistanceSquared(p, f.corner, f.corner + 3, f.corner + 6));
-        best = std::min(best, f.size + slope_ * d);
-      }
-      continue;
-    }
-    // The nearer child last on the stack, so it is visited first and tightens the bound.
-    const Node& l = nodes_[static_cast<std::size_t>(node.left)];
-    const Node& r = nodes_[static_cast<std::size_t>(node.right)];
-    const bool leftNearer =
-      geometry::pointBoxDistance(p, l.box) <= geometry::pointBoxDistance(p, r.box);
-    if (top + 2 > 128)
-      continue; // deeper than any balanced tree of 2^31 faces; cannot happen
-    stack[top++] = leftNearer ? node.right : node.left;
-    stack[top++] = leftNearer ? node.left : node.right;
-  }
-  return best;
+      if (!(f.size + slope_ * geometry::pointBoxDistance(p, f.box) < bound))
+        return bound;
+      const double d =
+        std::sqrt(geometry::pointTriangleDistanceSquared(p, f.corner, f.corner + 3, f.corner + 6));
+      return std::min(bound, f.size + slope_ * d);
+    });
 }
 
 } // namespace tetmesher

@@ -48,6 +48,11 @@ private:
   };
   std::int32_t build(std::int32_t first, std::int32_t count);
   double cellLowerBound(const double* cellBox) const;
+  // The tree search both use: from `best`, nodes whose smallest size plus slope times
+  // boxDistance(node box) cannot go below it are skipped, and each face of a leaf gives
+  // best = faceValue(face, best).
+  template<typename BoxDistance, typename FaceValue>
+  double search(double best, const BoxDistance& boxDistance, const FaceValue& faceValue) const;
 
   // Most queries return atMost (femur.off: 91% of 1.6M): no face comes below it, yet the tree
   // search walks ~40 nodes to show it. A lattice of cells keeps, computed on first use, the
