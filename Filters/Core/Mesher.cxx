@@ -50,12 +50,7 @@ MesherResult meshSurface(const double* points,
     diagnosisOptions.maxRecordsPerKind = 1000;
     SurfaceDiagnosis diagnosis =
       diagnoseSurface(points, pointCount, triangles, triangleCount, diagnosisOptions);
-    SurfaceDiagnosis errors;
-    for (const DefectRecord& d : diagnosis.defects)
-    {
-      if (!isWarning(d.kind))
-        errors.defects.push_back(d);
-    }
+    const SurfaceDiagnosis errors = diagnosis.errors();
     std::string defects = errors.defects.empty() ? std::string() : errors.summary();
     if (!defects.empty())
     {

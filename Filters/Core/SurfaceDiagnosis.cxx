@@ -729,6 +729,18 @@ bool isWarning(SurfaceDefect kind)
   return kind == SurfaceDefect::UnusedPoint || kind == SurfaceDefect::InconsistentOrientation;
 }
 
+SurfaceDiagnosis SurfaceDiagnosis::errors() const
+{
+  SurfaceDiagnosis out;
+  out.truncated = truncated;
+  for (const DefectRecord& r : defects)
+  {
+    if (!isWarning(r.kind))
+      out.defects.push_back(r);
+  }
+  return out;
+}
+
 bool SurfaceDiagnosis::ok() const
 {
   for (const DefectRecord& r : defects)

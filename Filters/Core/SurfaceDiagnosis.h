@@ -75,6 +75,9 @@ struct SurfaceDiagnosis
 
   bool ok() const;
   int count(SurfaceDefect kind) const;
+  // The records that make the surface unusable (the warnings left out), as a diagnosis of
+  // its own: what a refusal names.
+  SurfaceDiagnosis errors() const;
   // One line per defect kind found, e.g.
   //   "3 open edges (points 4-7, 7-9, 9-4; triangles 12, 40, 41)"
   // with at most maxIdsPerKind entries per list. "no defects" when there are none.

@@ -56,11 +56,8 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
     if (!out.diagnosis.ok())
     {
       // The defects that refuse the surface; its warnings stay in out.diagnosis only.
-      SurfaceDiagnosis errors;
-      for (const DefectRecord& record : out.diagnosis.defects)
-        if (!isWarning(record.kind))
-          errors.defects.push_back(record);
-      return fail("the input surface cannot be meshed:\n" + errors.summary(10) + idNote);
+      return fail(
+        "the input surface cannot be meshed:\n" + out.diagnosis.errors().summary(10) + idNote);
     }
     if (!out.diagnosis.defects.empty())
       out.warnings = out.diagnosis.summary(10) + idNote;

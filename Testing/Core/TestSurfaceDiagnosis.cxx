@@ -997,3 +997,22 @@ TEST(SurfaceDiagnosis, PerformanceLargeSphere)
   std::printf("diagnosis of %d triangles: %.3f s\n", s.triCount(), seconds);
   EXPECT_TRUE(d.defects.empty()) << d.summary();
 }
+
+TEST(SurfaceDiagnosis, ErrorsLeaveOutWarningsAndKeepTruncation)
+{
+  // What a refusal names: the errors alone, and "1000+" when the records were capped.
+  SurfaceDiagnosis d;
+  d.truncated = true;
+  d.defects.push_back({ SurfaceDefect::OpenEdge, { 0, 1 }, { 3 } });
+  d.defects.push_back({ SurfaceDefect::InconsistentOrientation, { 1, 2 }, { 4, 5 } });
+  d.defects.push_back({ SurfaceDefect::UnusedPoint, { 7 }, {} });
+  const SurfaceDiagnosis e = d.errors();
+  ASSERT_EQ(e.defects.size(), 1u);
+  EXPECT_EQ(e.defects[0].kind, SurfaceDefect::OpenEdge);
+  EXPECT_TRUE(e.truncated);
+  EXPECT_EQ(e.summary().rfind("1+ open edge", 0), 0u) << e.summary();
+  EXPECT_FALSE(d.ok());
+  SurfaceDiagnosis warningsOnly;
+  warningsOnly.defects = { d.defects[1], d.defects[2] };
+  EXPECT_TRUE(warningsOnly.ok());
+}
