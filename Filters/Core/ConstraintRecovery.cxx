@@ -1,5 +1,6 @@
 #include "ConstraintRecovery.h"
 
+#include "CavityCone.h"
 #include "DeepEdgeRemoval.h"
 #include "Delaunay.h"
 #include "EpochHashTable.h"
@@ -307,6 +308,9 @@ private:
     const std::function<bool()>& done,
     bool& moved);
   bool insertSteinerNear(VertexId seed, const ItemCost& cost);
+  // Refills the tets that input edge e cuts (grown until star-shaped) by the cone from one of
+  // its ends (CavityCone.h); true when the edge is then in the mesh.
+  bool refillEdgeCavity(std::size_t e);
   // Empty memos for a new measure: a cleared one of the pool that no measure holds any more
   // (their slots are reused from search to search), else a new one.
   std::shared_ptr<MemoCaches> emptyMemo()
@@ -1231,6 +1235,31 @@ bool Recovery::insertSteinerNear(VertexId seed, const ItemCost& exactCost)
   return false;
 }
 
+bool Recovery::refillEdgeCavity(std::size_t e)
+{
+  const VertexId ends[2] = { surface_.edges[e][0], surface_.edges[e][1] };
+  const FlipCost cost = memoized(edgeCost(ends[0], ends[1]), mesh_, emptyMemo());
+  auto keep = [this](VertexId u, VertexId v) { return isInputEdge(u, v); };
+  std::vector<TetId> cavity;
+  std::vector<TetVertices> cone;
+  for (int k = 0; k < 2; ++k)
+  {
+    collectPipe(ends[k], cost, cavity);
+    if (cavity.empty() || !coneFromVertex(mesh_, ends[k], cavity, keep, {}, cone))
+      continue;
+    const VertexId other = ends[1 - k];
+    if (std::none_of(cone.begin(),
+          cone.end(),
+          [other](const TetVertices& c)
+          { return c[0] == other || c[1] == other || c[2] == other || c[3] == other; }))
+      continue;
+    replace(cavity, cone, nullptr);
+    ++result_.cavityCones;
+    return true;
+  }
+  return false;
+}
+
 std::vector<std::size_t> Recovery::itemTriangles(std::size_t key) const
 {
   const auto& triangles = surface_.triangles;
@@ -1549,6 +1578,10 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
     // since faces need their edges), then the next round retries the flips. Items are looked
     // up again just before, as work on other items may have recovered them meanwhile.
     int inserted = 0;
+    // A missing edge is refilled by a cone where possible (no new point), which counts as
+    // one of its Steiner points for the bounds below.
+    auto refilled = [&](std::size_t key)
+    { return key < edges.size() && options_.refillCavities && refillEdgeCavity(key); };
     auto steinerFor =
       [&](std::size_t key, const std::string& name, VertexId seed, const ItemCost& cost)
     {
@@ -1580,7 +1613,7 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
         else if (static_cast<int>(result_.steinerVertices.size()) >= options_.maxSteinerPoints)
           result_.error = "could not recover " + name + " within the budget of " +
             std::to_string(options_.maxSteinerPoints) + " Steiner points";
-        else if (!insertSteinerNear(seed, cost))
+        else if (!refilled(key) && !insertSteinerNear(seed, cost))
           result_.error =
             "could not recover " + name + ": no Steiner point could be placed near it";
         else

@@ -14,7 +14,11 @@
 //     retried with its input triangles added to the measure;
 //  2. recovered faces are flagged constrained on both sides, so no later flip or insertion
 //     removes them;
-//  3. items still missing get one Steiner point each, by constrained Delaunay insertion
+//  3. a missing edge whose flips are stuck is first recovered, where possible, by refilling
+//     the tets it cuts (grown until one of its ends sees all their boundary faces) with the
+//     cone from that end (CavityCone.h): no new point, and it clears flat tets that no flip
+//     or Steiner cavity can take (a flat part of the surface folded by rounding);
+//  4. items still missing get one Steiner point each, by constrained Delaunay insertion
 //     (insertVertex), at a position strictly inside a tet the item cuts: next to the middle
 //     of a mesh edge crossing it (the cavity then swallows that edge's shell), else a tet
 //     centroid. A position on the input surface is never used (exact test). Next round.
@@ -55,6 +59,9 @@ struct RecoveryOptions
   // 0: never.
   int nearTouchProbeAfter = 8;
   double nearTouchRatio = 0x1p-40; // about 9e-13
+  // Before placing a Steiner point for a missing edge, try refilling the tets it cuts by the
+  // cone from one of its ends (CavityCone.h). Off: Steiner points only (for tests).
+  bool refillCavities = true;
 };
 
 struct RecoveryResult
@@ -65,6 +72,7 @@ struct RecoveryResult
   int flips23 = 0;
   int edgeRemovals = 0;
   int neutralMoves = 0; // flips that changed nothing measured but enabled an improving one
+  int cavityCones = 0;  // missing edges recovered by refilling their cavity (CavityCone.h)
   int rounds = 0;
 };
 

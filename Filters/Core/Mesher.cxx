@@ -103,6 +103,7 @@ MesherResult meshSurface(const double* points,
   result.recoverySeconds = secondsSince(stageStart);
   result.flips23 = recovery.flips23;
   result.edgeRemovals = recovery.edgeRemovals;
+  result.cavityCones = recovery.cavityCones;
   if (!recovery.ok)
   {
     result.error = recovery.error;

@@ -54,6 +54,7 @@ struct MesherResult
   int regionCount = 0;
   int flips23 = 0;
   int edgeRemovals = 0;
+  int cavityCones = 0; // missing edges recovered by refilling their cavity (CavityCone.h)
   double delaunaySeconds = 0;
   double recoverySeconds = 0;
   double regionsSeconds = 0;
