@@ -1,9 +1,9 @@
-// Re-tetrahedralisation of a cavity as the cone from one of its boundary vertices: the last
-// resort of edge recovery. When the tets around a missing input edge (a,b) are flat (a planar
-// part of the surface folded at the scale of rounding) no flip is valid and no Steiner point
-// can take them into its cavity, but a cavity that contains every tet the edge cuts and that
-// is star-shaped from a can be refilled by the tets (a, f) over its boundary faces f: b is on
-// that boundary, so the cone has the edge (a,b). The cavity is grown across each boundary face
+// Re-tetrahedralisation of a cavity as the cone from one of its boundary vertices, which edge
+// recovery tries before it places a Steiner point. When the tets around a missing input edge (a,b)
+// are flat (a planar part of the surface folded at the scale of rounding) no flip is valid and no
+// Steiner point can take them into its cavity, but a cavity that contains every tet the edge cuts
+// and that is star-shaped from a can be refilled by the tets (a, f) over its boundary faces f: b is
+// on that boundary, so the cone has the edge (a,b). The cavity is grown across each boundary face
 // that a does not strictly see, so the cone is exactly valid (TetGen refills the cavity of a
 // missing face in a similar spirit, with a Delaunay mesh of its vertices instead of a cone).
 #pragma once
