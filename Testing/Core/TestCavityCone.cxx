@@ -1,6 +1,7 @@
 // The cone refill of a cavity (CavityCone.h) on Delaunay meshes of random points, checked
-// exactly (orientation, adjacency, vertices, volume), and its use by boundary recovery on a
-// flat face folded at the scale of rounding (netgen's hinge.stl in miniature).
+// exactly (orientation, adjacency, vertices, volume), and its use by boundary recovery on
+// flat faces folded at the scale of rounding (netgen's hinge.stl in miniature), including two
+// on which recovery without refills fails.
 #include "CavityCone.h"
 #include "ConstraintRecovery.h"
 #include "Delaunay.h"
@@ -57,6 +58,60 @@ std::vector<TetId> tetsCutBy(const TetMesh& mesh, VertexId a, VertexId b)
 long double totalVolume(const TetMesh& mesh)
 {
   return volumeWithoutVertices(mesh, mesh.vertexCount());
+}
+
+// A box 50 long whose bottom face is a strip of long thin triangles zigzagging between its
+// two long sides, which bulge towards each other (a parabola, so no libm call decides a
+// coordinate); every bottom point is at z = 0 or, at random, one rounding step below
+// (-8.9e-16): the face is folded at the scale of rounding, as netgen's hinge.stl is between
+// the holes of its bottom plate. Walls and top are fans and two triangles.
+Surface foldedStripBox(int front, int back, std::uint64_t seed, double bulge, double width)
+{
+  Surface s;
+  const double length = 50, height = 10, fold = -8.881784197001252e-16;
+  std::mt19937_64 random(seed);
+  auto z = [&] { return random() % 2 ? fold : 0.0; };
+  std::vector<std::int32_t> f, b;
+  for (int i = 0; i < front; ++i)
+  {
+    const double t = static_cast<double>(i) / (front - 1);
+    f.push_back(s.addPoint(length * t, bulge * 4 * t * (1 - t), z()));
+  }
+  for (int j = 0; j < back; ++j)
+  {
+    const double t = static_cast<double>(j) / (back - 1);
+    b.push_back(s.addPoint(length * t, width - bulge * 4 * t * (1 - t), z()));
+  }
+  const std::int32_t top[4] = { s.addPoint(0, 0, height),
+    s.addPoint(length, 0, height),
+    s.addPoint(length, width, height),
+    s.addPoint(0, width, height) };
+  // Bottom (normal -z): advance along the side whose next point comes first.
+  std::size_t i = 0, j = 0;
+  while (i + 1 < f.size() || j + 1 < b.size())
+  {
+    const bool alongFront = j + 1 == b.size() ||
+      (i + 1 < f.size() &&
+        static_cast<double>(i + 1) / (f.size() - 1) <= static_cast<double>(j + 1) / (b.size() - 1));
+    if (alongFront)
+      s.addTriangle(f[i], b[j], f[i + 1]), ++i;
+    else
+      s.addTriangle(f[i], b[j], b[j + 1]), ++j;
+  }
+  s.addTriangle(top[0], top[1], top[2]);
+  s.addTriangle(top[0], top[2], top[3]);
+  // Front and back walls: fans from the top corners; then the two ends.
+  for (std::size_t k = 0; k + 1 < f.size(); ++k)
+    s.addTriangle(f[k], f[k + 1], k + 1 < f.size() / 2 ? top[0] : top[1]);
+  s.addTriangle(f[f.size() / 2 - 1], top[1], top[0]);
+  for (std::size_t k = 0; k + 1 < b.size(); ++k)
+    s.addTriangle(b[k + 1], b[k], k + 1 < b.size() / 2 ? top[3] : top[2]);
+  s.addTriangle(b[b.size() / 2 - 1], top[3], top[2]);
+  s.addTriangle(f[0], top[3], b[0]);
+  s.addTriangle(f[0], top[0], top[3]);
+  s.addTriangle(f.back(), b.back(), top[2]);
+  s.addTriangle(f.back(), top[2], top[1]);
+  return s;
 }
 
 } // namespace
@@ -199,4 +254,48 @@ TEST(CavityCone, RecoversAFaceFoldedByRounding)
     cones);
   EXPECT_GE(cones, 5);
   EXPECT_LT(steinerWith, steinerWithout);
+}
+
+// Two of the strips above (found among 3087 valid ones, 2026-11-29) on which recovery without
+// refills fails the way hinge.stl did: the Steiner candidates near the missing edge creep
+// towards the folded face until none is allowed. A refill recovers the edge with no Steiner
+// point; TetGen -pY meshes both as well.
+TEST(CavityCone, RecoversStripsWhereNoSteinerPointFits)
+{
+  struct Case
+  {
+    int front, back;
+    std::uint64_t seed;
+    double bulge, width;
+  };
+  for (const Case& c : { Case{ 69, 10, 209, 2.1, 8.0 }, Case{ 78, 10, 3694, 4.7, 26.25 } })
+  {
+    Surface s = foldedStripBox(c.front, c.back, c.seed, c.bulge, c.width);
+    SurfaceInput input;
+    ASSERT_EQ(buildSurfaceInput(
+                s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), input),
+      "");
+    TetMesh without;
+    without.coords = s.points;
+    ASSERT_TRUE(buildDelaunay(without).ok);
+    RecoveryOptions options;
+    options.refillCavities = false;
+    const RecoveryResult failed = recoverBoundary(without, input, options);
+    EXPECT_FALSE(failed.ok) << "seed " << c.seed << " no longer needs a refill: pick another";
+    EXPECT_NE(failed.error.find("no Steiner point could be placed"), std::string::npos)
+      << failed.error;
+
+    TetMesh with;
+    with.coords = s.points;
+    ASSERT_TRUE(buildDelaunay(with).ok);
+    const RecoveryResult recovered = recoverBoundary(with, input, RecoveryOptions());
+    EXPECT_TRUE(recovered.ok) << recovered.error;
+    EXPECT_GE(recovered.cavityCones, 1);
+    EXPECT_EQ(checkOrientation(with), "");
+    EXPECT_EQ(checkAdjacency(with, true), "");
+
+    MesherResult r =
+      meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount());
+    EXPECT_EQ(checkMesh(s, r, std::vector<int>(s.triangleCount(), 1), 1), "") << "seed " << c.seed;
+  }
 }
