@@ -1,6 +1,7 @@
 #include "CavityCone.h"
 
 #include "Predicates.h"
+#include "SurfaceInput.h"
 
 #include <algorithm>
 #include <array>
@@ -21,11 +22,6 @@ std::array<VertexId, 3> orientedKey(VertexId x, VertexId y, VertexId z)
   if (z < x && z < y)
     return { z, x, y };
   return { x, y, z };
-}
-
-std::array<VertexId, 2> edgeKey(VertexId u, VertexId v)
-{
-  return u < v ? std::array<VertexId, 2>{ u, v } : std::array<VertexId, 2>{ v, u };
 }
 
 } // namespace
@@ -80,7 +76,7 @@ bool coneFromVertex(const TetMesh& mesh,
   std::map<std::array<VertexId, 3>, int> apexFaces; // oriented face -> uses
   std::set<std::array<VertexId, 3>> boundaryAtApex;
   std::set<VertexId> vertices;
-  std::set<std::array<VertexId, 2>> keptEdges;
+  std::set<std::uint64_t> keptEdges; // edgeKey (SurfaceInput.h)
   for (TetId t : cavity)
   {
     for (int i = 0; i < 4; ++i)
@@ -118,16 +114,14 @@ bool coneFromVertex(const TetMesh& mesh,
   {
     if (uses != 1)
       return false;
-    const std::array<VertexId, 3> opposite = orientedKey(face[0], face[2], face[1]);
-    const auto other = apexFaces.find(opposite);
-    if (other == apexFaces.end())
+    if (!apexFaces.count(orientedKey(face[0], face[2], face[1])))
       unmatched.insert(face);
   }
   if (unmatched != boundaryAtApex)
     return false;
   // Nothing of the cavity may be lost: its vertices and the edges to keep.
   std::set<VertexId> coneVertices;
-  std::set<std::array<VertexId, 2>> coneEdges;
+  std::set<std::uint64_t> coneEdges;
   for (const TetVertices& c : cone)
   {
     for (int i = 0; i < 4; ++i)
