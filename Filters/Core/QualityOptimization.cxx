@@ -24,6 +24,10 @@ using namespace optimization;
 
 // The dihedral stage works on tets below this multiple of OptimizationOptions::dihedralTarget.
 constexpr double kDihedralWorkMargin = 1.2;
+// The least bound on a pass's smoothing moves (OptimizationOptions::
+// smoothingMovesPerFreeVertex): small meshes, where moves cost little, and meshes with few
+// free vertices (a thin plate; vertices added by insertion) are not held back.
+constexpr std::int64_t kMinSmoothingMoveBudget = 1000;
 
 class Optimizer
 {
@@ -115,6 +119,10 @@ private:
   std::vector<std::uint64_t> changed_, smoothFailed_, tetFailed_, insertFailed_;
   std::vector<TetVertices> tetFailedVerts_, insertFailedVerts_;
   std::vector<char> queued_; // per tet slot: in this pass's queue
+  // Smoothing moves in this pass, per vertex and in all, and the pass's bound on the total
+  // (-1: none); see OptimizationOptions::maxSmoothingMovesPerVertex.
+  std::vector<int> passMoves_;
+  std::int64_t passMoveCount_ = 0, passMoveBudget_ = -1;
 };
 
 void Optimizer::touch(TetId t)
@@ -136,9 +144,17 @@ bool Optimizer::smooth(VertexId v)
   const std::size_t i = static_cast<std::size_t>(v);
   if (i < smoothFailed_.size() && smoothFailed_[i] >= changed_[i])
     return false;
+  const int perVertex = ctx_.options.maxSmoothingMovesPerVertex;
+  if (i >= passMoves_.size())
+    passMoves_.resize(i + 1, 0);
+  if ((perVertex > 0 && passMoves_[i] >= perVertex) ||
+    (passMoveBudget_ >= 0 && passMoveCount_ >= passMoveBudget_))
+    return false;
   ++clock_;
   if (smoothVertex(ctx_, v, star_))
   {
+    ++passMoves_[i];
+    ++passMoveCount_;
     touch(star_);
     return true;
   }
@@ -325,6 +341,10 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
           ctx_.fixed[static_cast<std::size_t>(ctx_.mesh.vertex(t, kFaceVertices[f][k]))] = 1;
   }
   ctx_.index.rebuild(ctx_.mesh);
+  if (ctx_.options.smoothingMovesPerFreeVertex > 0)
+    passMoveBudget_ = std::max<std::int64_t>(kMinSmoothingMoveBudget,
+      static_cast<std::int64_t>(ctx_.options.smoothingMovesPerFreeVertex *
+        static_cast<double>(std::count(ctx_.fixed.begin(), ctx_.fixed.end(), 0))));
   changed_.assign(nv, 1);
   smoothFailed_.assign(nv, 0);
 
@@ -347,6 +367,8 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
   {
     currentPass = pass;
     res_.passesRun = pass + 1;
+    passMoves_.assign(passMoves_.size(), 0);
+    passMoveCount_ = 0;
     int changes = 0;
     {
       double mean, share;

@@ -72,6 +72,21 @@ struct OptimizationOptions
   // does anyway; on the sized benchmark's cases the minimum angles stayed within noise of
   // 8 steps (torus at h/2: 20.4 -> 22.2 degrees) for about 0.6x the smoothing time.
   int smoothingSteps = 2;
+  // Bounds on smoothing moves per pass (a stage runs `passes` of them): one vertex moves at
+  // most maxSmoothingMovesPerVertex times, and all vertices together at most
+  // smoothingMovesPerFreeVertex x (the vertices free to move) times, never fewer than 1000;
+  // past them the pass goes on with topological moves alone. On surfaces with poor
+  // triangles most tets stay below the target whatever is done, and each move requeues the
+  // ball's bad tets, so neighbouring vertices traded small gains back and forth: 27 moves
+  // per interior vertex on Data/turbine.off (optimisation 3.9 of its 4.8 s), ~100 on
+  // rotor_small. Bounded, the default-size optimisation of turbine takes 1.9 s, alternator
+  // 2.4 s (6.2), couplingdown 1.2 s (5.6), pinion_small 0.7 s (3.4), with a lower share of
+  // tets below Q 0.3 on all but pinion_small; the sized benchmark's good surfaces never
+  // reach them (same meshes). 6 per vertex was faster still (turbine 1.5 s) but changed the
+  // meshes of good surfaces (torus.vtp Q min 0.352 -> 0.345); 1 per free vertex cost
+  // rotor_small's Q min (0.0102 -> 0.0077). <= 0: no bound.
+  int maxSmoothingMovesPerVertex = 12;
+  double smoothingMovesPerFreeVertex = 2.0;
   // With PaperQ: when > 0 (degrees), a second stage follows, driven by the smallest dihedral
   // angle, with the minimum Q reached by the first stage guarded. It works on the tets below
   // 1.2 x dihedralTarget (qualityTarget = 1.2 * dihedralTarget / 70.53): working past the

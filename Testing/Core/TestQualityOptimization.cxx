@@ -425,6 +425,43 @@ TEST(QualityOptimization, LargerJitteredGridTiming)
   EXPECT_LT(r.seconds, 30.0);
 }
 
+TEST(QualityOptimization, SmoothingMoveBoundsHold)
+{
+  // The bounds on smoothing moves per pass (OptimizationOptions::maxSmoothingMovesPerVertex,
+  // smoothingMovesPerFreeVertex): each one bites on this input, and the counts stay within.
+  const int vertices = jitteredGridCube(14, 12).mesh.vertexCount();
+  OptimizationOptions unbounded;
+  unbounded.dihedralTarget = 0; // one stage: passesRun counts its passes only
+  unbounded.insertion = false;  // no new vertices
+  unbounded.maxSmoothingMovesPerVertex = 0;
+  unbounded.smoothingMovesPerFreeVertex = 0;
+  RegionMesh free = jitteredGridCube(14, 12);
+  OptimizationResult u = optimizeAndCheck("cube 12x12 + 14^3 grid, Q stage", free, unbounded);
+
+  OptimizationOptions perVertex = unbounded;
+  perVertex.maxSmoothingMovesPerVertex = 1;
+  RegionMesh once = jitteredGridCube(14, 12);
+  OptimizationResult b = optimizeAndCheck("... 1 move per vertex and pass", once, perVertex);
+  EXPECT_LE(b.smoothedVertices, b.passesRun * vertices);
+  EXPECT_LT(b.smoothedVertices, u.smoothedVertices);
+
+  // The bound on all moves of a pass is never below 1000 (kMinSmoothingMoveBudget).
+  OptimizationOptions total = unbounded;
+  total.smoothingMovesPerFreeVertex = 1e-6;
+  RegionMesh few = jitteredGridCube(14, 12);
+  OptimizationResult f = optimizeAndCheck("... 1000 moves per pass", few, total);
+  EXPECT_LE(f.smoothedVertices, f.passesRun * 1000);
+  EXPECT_LT(f.smoothedVertices, u.smoothedVertices);
+
+  // Bounded, the optimiser still lifts the worst tets past the target's neighbourhood (the
+  // minima never decrease: optimizeAndCheck).
+  for (const OptimizationResult* x : { &u, &b, &f })
+  {
+    EXPECT_GT(x->smoothedVertices, 0);
+    EXPECT_GT(x->minQualityAfter, 0.3);
+  }
+}
+
 TEST(QualityOptimization, VertexInsertionKeepsInvariants)
 {
   // Insertion is tried once the other moves stall; check every invariant with it on.
