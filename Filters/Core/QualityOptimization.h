@@ -82,9 +82,10 @@ struct OptimizationOptions
   // rotor_small. Bounded, the default-size optimisation of turbine takes 1.9 s, alternator
   // 2.4 s (6.2), couplingdown 1.2 s (5.6), pinion_small 0.7 s (3.4); the share of tets
   // below Q 0.3 fell on the first three and rose on pinion_small (50.7 -> 55.1%), and the
-  // sized benchmark's good surfaces never reach the bounds (same meshes). 6 per vertex was faster still (turbine 1.5 s) but changed the
-  // meshes of good surfaces (torus.vtp Q min 0.352 -> 0.345); 1 per free vertex cost
-  // rotor_small's Q min (0.0102 -> 0.0077). <= 0: no bound.
+  // sized benchmark's good surfaces never reach the bounds (same meshes). 6 per vertex was
+  // faster still (turbine 1.5 s) but changed the meshes of good surfaces (torus.vtp Q min
+  // 0.352 -> 0.345); 1 per free vertex cost rotor_small's Q min (0.0102 -> 0.0077). <= 0: no
+  // bound.
   int maxSmoothingMovesPerVertex = 12;
   double smoothingMovesPerFreeVertex = 2.0;
   // With PaperQ: when > 0 (degrees), a second stage follows, driven by the smallest dihedral
