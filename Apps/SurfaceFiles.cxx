@@ -967,11 +967,17 @@ bool ReadVtp(const std::string& path, SurfaceData& surface)
 namespace
 {
 
-// One array of the file: its XML attributes and its bytes (as stored: raw or zlib blocks).
+// One appended array of the file: its XML attributes; `stored` is written first (the whole block
+// when compressed, else its byte count), then `raw`, the uncompressed values straight from the
+// caller's vector: not copied, as the mesh's arrays are most of the file (fandisk at h = 0.0207: 20
+// MB).
 struct OutArray
 {
   std::string attributes; // type, Name, NumberOfComponents... without format/offset
   std::vector<unsigned char> stored;
+  const void* raw = nullptr;
+  std::size_t rawBytes = 0;
+  std::size_t size() const { return stored.size() + rawBytes; }
 };
 
 template<typename T>
@@ -981,19 +987,12 @@ void Append(std::vector<unsigned char>& out, const T& value)
   out.insert(out.end(), bytes, bytes + sizeof(T));
 }
 
-// The block as vtkXMLWriter stores it: a UInt64 byte count then the data, or with zlib
-// [blocks, block size, last block size, compressed sizes] then the compressed blocks.
-std::vector<unsigned char> Store(const void* data, std::size_t bytes, bool compress)
+// The block as vtkXMLWriter stores it with zlib: [blocks, block size, last block size,
+// compressed sizes] then the compressed blocks.
+std::vector<unsigned char> Compress(const void* data, std::size_t bytes)
 {
   std::vector<unsigned char> out;
   const auto* in = static_cast<const unsigned char*>(data);
-  if (!compress)
-  {
-    out.reserve(8 + bytes);
-    Append(out, static_cast<std::uint64_t>(bytes));
-    out.insert(out.end(), in, in + bytes);
-    return out;
-  }
   constexpr std::size_t kBlockSize = 32768; // vtkXMLWriter's
   constexpr int kLevel = 5;                 // vtkXMLWriter's CompressionLevel
   const std::size_t blocks = (bytes + kBlockSize - 1) / kBlockSize;
@@ -1018,22 +1017,36 @@ std::vector<unsigned char> Store(const void* data, std::size_t bytes, bool compr
   return out;
 }
 
+// Uncompressed, as vtkXMLWriter stores it: a UInt64 byte count then the values, which are
+// written from `values` itself: it must outlive the writing (hence no temporaries).
 template<typename T>
 OutArray MakeArray(const std::string& attributes, const std::vector<T>& values, bool compress)
 {
-  return { attributes, Store(values.data(), values.size() * sizeof(T), compress) };
+  const std::size_t bytes = values.size() * sizeof(T);
+  if (compress)
+    return { attributes, Compress(values.data(), bytes), nullptr, 0 };
+  OutArray array{
+    attributes, std::vector<unsigned char>(sizeof(std::uint64_t)), values.data(), bytes
+  };
+  const std::uint64_t count = bytes;
+  std::memcpy(array.stored.data(), &count, sizeof count);
+  return array;
 }
+template<typename T>
+OutArray MakeArray(const std::string& attributes, const std::vector<T>&& values, bool) = delete;
 } // namespace
 
 void WriteVtu(const SurfaceMeshOutput& mesh, const std::string& path, bool compress)
 {
   // Arrays in the order and with the types of vtkTetMesher's output as VTK writes it.
   std::vector<OutArray> fields, pointData, cellData;
+  std::vector<std::vector<double>> fieldValues;
+  fieldValues.reserve(mesh.fieldData.size());
   for (const auto& [name, value] : mesh.fieldData)
   {
-    fields.push_back(MakeArray("type=\"Float64\" Name=\"" + name + "\" NumberOfTuples=\"1\"",
-      std::vector<double>{ value },
-      compress));
+    fieldValues.push_back({ value });
+    fields.push_back(MakeArray(
+      "type=\"Float64\" Name=\"" + name + "\" NumberOfTuples=\"1\"", fieldValues.back(), compress));
   }
   if (!mesh.mesh.vertexSize.empty())
     pointData.push_back(MakeArray("type=\"Float64\" Name=\"h\"", mesh.mesh.vertexSize, compress));
@@ -1058,9 +1071,8 @@ void WriteVtu(const SurfaceMeshOutput& mesh, const std::string& path, bool compr
     ends[t] = static_cast<std::int64_t>(4 * (t + 1));
   cells.push_back(MakeArray("type=\"Int64\" Name=\"connectivity\"", mesh.cells, compress));
   cells.push_back(MakeArray("type=\"Int64\" Name=\"offsets\"", ends, compress));
-  cells.push_back(MakeArray("type=\"UInt8\" Name=\"types\"",
-    std::vector<std::uint8_t>(tetCount, 10 /* VTK_TETRA */),
-    compress));
+  const std::vector<std::uint8_t> types(tetCount, 10 /* VTK_TETRA */);
+  cells.push_back(MakeArray("type=\"UInt8\" Name=\"types\"", types, compress));
 
   std::string xml = "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
                     "byte_order=\"LittleEndian\" header_type=\"UInt64\"";
@@ -1078,7 +1090,7 @@ void WriteVtu(const SurfaceMeshOutput& mesh, const std::string& path, bool compr
       xml += indent;
       xml += "<DataArray " + array.attributes + " format=\"appended\" offset=\"" +
         std::to_string(offset) + "\"/>\n";
-      offset += array.stored.size();
+      offset += array.size();
     }
     xml += close;
   };
@@ -1098,7 +1110,11 @@ void WriteVtu(const SurfaceMeshOutput& mesh, const std::string& path, bool compr
   write(xml.data(), xml.size());
   for (const auto* arrays : { &fields, &pointData, &cellData, &pointsArray, &cells })
     for (const OutArray& array : *arrays)
+    {
       write(array.stored.data(), array.stored.size());
+      if (array.rawBytes > 0)
+        write(array.raw, array.rawBytes);
+    }
   const char tail[] = "\n  </AppendedData>\n</VTKFile>\n";
   write(tail, sizeof tail - 1);
   ok = ok && std::fflush(file.get()) == 0;
