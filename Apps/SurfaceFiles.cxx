@@ -967,10 +967,10 @@ bool ReadVtp(const std::string& path, SurfaceData& surface)
 namespace
 {
 
-// One appended array of the file: its XML attributes; `stored` is written first (the whole block
-// when compressed, else its byte count), then `raw`, the uncompressed values straight from the
-// caller's vector: not copied, as the mesh's arrays are most of the file (fandisk at h = 0.0207: 20
-// MB).
+// One appended array of the file: its XML attributes; `stored`, written first (the whole
+// block when compressed, else its byte count); then `raw`, the uncompressed values straight
+// from the caller's vector, not copied: they are most of the file (20 MB for fandisk at
+// h = 0.0207).
 struct OutArray
 {
   std::string attributes; // type, Name, NumberOfComponents... without format/offset
