@@ -39,7 +39,8 @@ struct SmoothingScratch
   // The whole measures behind score and trialScore: on success they go to the quality
   // cache, which the optimiser's requeueing of the ball reads next (no second measure).
   std::vector<TetEval> eval, trialEval;
-  std::vector<std::size_t> order; // star indices, worst current score first
+  std::vector<std::size_t> order;                   // star indices, worst current score first
+  std::vector<std::pair<double, std::size_t>> keys; // rankStar's scratch
   std::vector<std::array<double, 3>> grads;
 };
 
@@ -78,10 +79,22 @@ bool tryPosition(const Context& ctx,
 
 void rankStar(SmoothingScratch& sc)
 {
-  std::sort(sc.order.begin(),
-    sc.order.end(),
-    [&](std::size_t a, std::size_t b)
-    { return sc.score[a] < sc.score[b] || (sc.score[a] == sc.score[b] && a < b); });
+  // Insertion sort of (score, index) keys: stars hold 20-40 tets, and the keys need no
+  // indirection through sc.score (std::sort on the indices was 3% of the optimiser). The
+  // order is the same: (score, index) is a strict total order.
+  sc.keys.resize(sc.order.size());
+  for (std::size_t k = 0; k < sc.order.size(); ++k)
+    sc.keys[k] = { sc.score[sc.order[k]], sc.order[k] };
+  for (std::size_t k = 1; k < sc.keys.size(); ++k)
+  {
+    const std::pair<double, std::size_t> key = sc.keys[k];
+    std::size_t j = k;
+    for (; j > 0 && key < sc.keys[j - 1]; --j)
+      sc.keys[j] = sc.keys[j - 1];
+    sc.keys[j] = key;
+  }
+  for (std::size_t k = 0; k < sc.keys.size(); ++k)
+    sc.order[k] = sc.keys[k].second;
 }
 } // namespace
 
