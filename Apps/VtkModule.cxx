@@ -5,7 +5,10 @@
 
 #include "vtkSMPTools.h"
 
+#include <cstdio>
 #include <cstdlib>
+#include <exception>
+#include <new>
 
 namespace
 {
@@ -16,6 +19,25 @@ void UseSequentialBackend()
   if (!std::getenv("VTK_SMP_BACKEND_IN_USE"))
     vtkSMPTools::SetBackend("Sequential");
 }
+// No exception leaves the module: these are C functions, and tetmesher has its own copy of
+// the C++ runtime (linked statically), whose handlers would not match this one's types.
+template<typename Command>
+int Guarded(Command&& command)
+{
+  try
+  {
+    return command();
+  }
+  catch (const std::bad_alloc&)
+  {
+    std::fputs("tetmesher: out of memory\n", stderr);
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "tetmesher: %s\n", e.what());
+  }
+  return 1;
+}
 } // namespace
 
 extern "C"
@@ -24,12 +46,12 @@ extern "C"
     const tetmesher::cli::MeshOptions* options)
   {
     UseSequentialBackend();
-    return tetmesher::cli::RunMeshWithVtk(*options);
+    return Guarded([options] { return tetmesher::cli::RunMeshWithVtk(*options); });
   }
 
   __attribute__((visibility("default"))) int tetmesherQuality(int argc, char* argv[])
   {
     UseSequentialBackend();
-    return tetmesher::cli::RunQuality(argc, argv);
+    return Guarded([argc, argv] { return tetmesher::cli::RunQuality(argc, argv); });
   }
 }
