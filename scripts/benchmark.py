@@ -734,8 +734,9 @@ def write_outputs(args, rows, cases, tools, command, started, finished, qhist):
     md.append("- command: `bash scripts/benchmark.sh%s` = `%s`" % (
         "" if not command.split("benchmark.py")[1].strip() else " " + command.split("benchmark.py")[1].strip(),
         command))
-    md.append("- versions: TetMesher git %s (Release, build-bench), TetGen %s, %s, VTK %s"
-              % (v["tetmesher"], v["tetgen"], "Gmsh " + v["gmsh"], v["vtk"]))
+    binary_dir = os.path.relpath(os.path.dirname(os.path.dirname(os.path.abspath(args.tetmesher))), ROOT)
+    md.append("- versions: TetMesher git %s (Release, %s), TetGen %s, %s, VTK %s"
+              % (v["tetmesher"], binary_dir, v["tetgen"], "Gmsh " + v["gmsh"], v["vtk"]))
     md.append("- tools: `tetmesher mesh IN -o OUT.vtu -q --boundary-only`; `tetgen -pY` and `tetgen -pYq1.2` (on .off; "
               ".vtp/.stl converted to .off with exact doubles); `gmsh in.geo -3 -nt 1` with "
               "Mesh.Algorithm3D=1 (Delaunay) / 10 (HXT) on the surface merged as a discrete MSH 2.2 mesh "
