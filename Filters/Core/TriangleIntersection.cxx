@@ -118,6 +118,35 @@ bool strictlyOneSide(const double* const t[3], const double* x, const double* y,
   return orient3d(t[0], t[1], t[2], z) == sx;
 }
 
+// Closed coplanar triangles p and q, both non-degenerate in the projection dropping `axis`:
+// do they share a point? They are disjoint exactly when an edge line of one has the whole
+// other triangle strictly on its outer side (separating axes of convex polygons).
+bool coplanarTrianglesMeet(const double* const p[3], const double* const q[3], int axis)
+{
+  const int op = orient2d(p[0], p[1], p[2], axis);
+  const int oq = orient2d(q[0], q[1], q[2], axis);
+  auto separates = [axis](const double* const t[3], int o, const double* const other[3])
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      const double* a = t[i];
+      const double* b = t[(i + 1) % 3];
+      if (orient2d(a, b, other[0], axis) * o < 0 && orient2d(a, b, other[1], axis) * o < 0 &&
+        orient2d(a, b, other[2], axis) * o < 0)
+        return true;
+    }
+    return false;
+  };
+  return !separates(p, op, q) && !separates(q, oq, p);
+}
+
+// The direction v->w lies in the closed angle of the (non-degenerate, projected) triangle
+// (v,a,b) at v, whose orientation is o.
+bool rayInAngle(const double* v, const double* w, const double* a, const double* b, int o, int axis)
+{
+  return orient2d(v, a, w, axis) * o >= 0 && orient2d(v, w, b, axis) * o >= 0;
+}
+
 } // namespace
 
 int triangleProjectionAxis(const double* a, const double* b, const double* c)
@@ -220,7 +249,21 @@ bool trianglesIntersectImproperly(const double* const p[3],
     const double* b2 = q[(iq + 2) % 3];
     // If one triangle's other vertices lie strictly on one side of the other's plane, the
     // triangles meet only in v.
-    if (strictlyOneSide(q, a1, b1, nullptr) || strictlyOneSide(p, a2, b2, nullptr))
+    const int sa = orient3d(q[0], q[1], q[2], a1);
+    const int sb = orient3d(q[0], q[1], q[2], b1);
+    if (sa == 0 && sb == 0)
+    {
+      // Coplanar (fans on the planar faces of CAD parts: most pairs there). Each triangle
+      // lies in its angle at v, so they meet beyond v exactly when the angles share a ray,
+      // and then a side of one angle lies in the other.
+      const int axis = triangleProjectionAxis(v, a1, b1);
+      const int o1 = axis < 0 ? 0 : orient2d(v, a1, b1, axis);
+      const int o2 = axis < 0 ? 0 : orient2d(v, a2, b2, axis);
+      if (o1 != 0 && o2 != 0)
+        return rayInAngle(v, a2, a1, b1, o1, axis) || rayInAngle(v, b2, a1, b1, o1, axis) ||
+          rayInAngle(v, a1, a2, b2, o2, axis) || rayInAngle(v, b1, a2, b2, o2, axis);
+    }
+    if ((sa != 0 && sb == sa) || strictlyOneSide(p, a2, b2, nullptr))
       return false;
     // Otherwise their intersection is a convex set containing v; it has another point iff an
     // edge of one triangle meets the other triangle outside v.
@@ -234,7 +277,18 @@ bool trianglesIntersectImproperly(const double* const p[3],
 
   // No shared vertex: any common point means an intersection, and if there is one, some edge
   // of one triangle meets the other triangle.
-  if (strictlyOneSide(q, p[0], p[1], p[2]) || strictlyOneSide(p, q[0], q[1], q[2]))
+  const int s0 = orient3d(q[0], q[1], q[2], p[0]);
+  const int s1 = orient3d(q[0], q[1], q[2], p[1]);
+  if (s0 == 0 && s1 == 0 && orient3d(q[0], q[1], q[2], p[2]) == 0)
+  {
+    // Coplanar (neighbouring triangles of a planar face): one separating-axis test in the
+    // plane instead of six segment tests.
+    const int axis = triangleProjectionAxis(q[0], q[1], q[2]);
+    if (axis >= 0 && orient2d(p[0], p[1], p[2], axis) != 0)
+      return coplanarTrianglesMeet(p, q, axis);
+  }
+  if ((s0 != 0 && s1 == s0 && orient3d(q[0], q[1], q[2], p[2]) == s0) ||
+    strictlyOneSide(p, q[0], q[1], q[2]))
     return false;
   for (int i = 0; i < 3; ++i)
   {

@@ -803,6 +803,62 @@ TEST(SurfaceDiagnosis, TrianglePairPredicates)
   EXPECT_FALSE(isTriangleDegenerate(o, x, m));
 }
 
+// Coplanar pairs (the planar faces of CAD parts) take a test in the plane: a separating axis
+// without a shared vertex, the angles at the shared vertex with one. In a tilted plane, so the
+// projection matters; coordinates o + i u + j w are exact. Each case in both orientations.
+TEST(SurfaceDiagnosis, CoplanarTrianglePairsInATiltedPlane)
+{
+  std::vector<std::array<double, 3>> pts;
+  std::map<std::pair<int, int>, std::int32_t> ids;
+  auto at = [&](int i, int j)
+  {
+    auto it = ids.find({ i, j });
+    if (it != ids.end())
+      return it->second;
+    pts.push_back({ 0.5 + i * 1.0 + j * 0.0, -1.0 + i * 2.0 + j * 1.0, 2.0 + i * 0.0 + j * 3.0 });
+    return ids[{ i, j }] = static_cast<std::int32_t>(pts.size() - 1);
+  };
+  auto meet = [&](std::array<std::array<int, 2>, 3> a, std::array<std::array<int, 2>, 3> b)
+  {
+    std::int32_t ia[3], ib[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      ia[k] = at(a[k][0], a[k][1]);
+      ib[k] = at(b[k][0], b[k][1]);
+    }
+    const double* p[3] = { pts[ia[0]].data(), pts[ia[1]].data(), pts[ia[2]].data() };
+    const double* q[3] = { pts[ib[0]].data(), pts[ib[1]].data(), pts[ib[2]].data() };
+    const double* pr[3] = { p[0], p[2], p[1] };
+    const std::int32_t iar[3] = { ia[0], ia[2], ia[1] };
+    const bool r = trianglesIntersectImproperly(p, ia, q, ib);
+    EXPECT_EQ(r, trianglesIntersectImproperly(pr, iar, q, ib));
+    EXPECT_EQ(r, trianglesIntersectImproperly(q, ib, p, ia));
+    return r;
+  };
+  for (int k = 0; k < 8; ++k)
+    at(k % 4, k / 4); // ids in a fixed order, whatever the cases ask first
+  // No shared vertex.
+  EXPECT_FALSE(meet({ { { 0, 0 }, { 1, 0 }, { 0, 1 } } }, { { { 2, 0 }, { 3, 0 }, { 2, 1 } } }));
+  EXPECT_TRUE(meet({ { { 0, 0 }, { 2, 0 }, { 0, 2 } } }, { { { 1, 1 }, { 3, 1 }, { 1, 3 } } }))
+    << "a vertex on the other's edge is a common point";
+  EXPECT_TRUE(meet({ { { 0, 0 }, { 4, 0 }, { 0, 4 } } }, { { { 1, 1 }, { 2, 1 }, { 1, 2 } } }))
+    << "one inside the other";
+  EXPECT_FALSE(meet({ { { 0, 0 }, { 4, 0 }, { 0, 4 } } }, { { { 3, 3 }, { 4, 3 }, { 3, 4 } } }))
+    << "boxes overlap, triangles do not";
+  EXPECT_TRUE(meet({ { { 0, 0 }, { 4, 0 }, { 0, 4 } } }, { { { 1, -1 }, { 3, -1 }, { 2, 1 } } }))
+    << "edges cross";
+  // Sharing vertex (0,0) only.
+  EXPECT_FALSE(meet({ { { 0, 0 }, { 1, 0 }, { 1, 1 } } }, { { { 0, 0 }, { -1, 0 }, { -1, -1 } } }));
+  EXPECT_FALSE(meet({ { { 0, 0 }, { 1, 0 }, { 0, 1 } } }, { { { 0, 0 }, { -1, 0 }, { 0, -1 } } }))
+    << "collinear edges in opposite directions meet only in the vertex";
+  EXPECT_TRUE(meet({ { { 0, 0 }, { 2, 0 }, { 0, 1 } } }, { { { 0, 0 }, { 1, 0 }, { 0, -1 } } }))
+    << "edges along the same ray overlap";
+  EXPECT_TRUE(meet({ { { 0, 0 }, { 2, 0 }, { 0, 2 } } }, { { { 0, 0 }, { 1, 1 }, { 2, 1 } } }))
+    << "an edge inside the other's angle";
+  EXPECT_FALSE(meet({ { { 0, 0 }, { 2, 0 }, { 1, 1 } } }, { { { 0, 0 }, { 1, 2 }, { 0, 2 } } }))
+    << "two triangles of a fan with a gap between them";
+}
+
 TEST(SurfaceDiagnosis, CorpusFiles)
 {
   // Every .off/.stl in Data/ must be valid input. TETMESHER_DIAGNOSE_FILES (':'-separated
