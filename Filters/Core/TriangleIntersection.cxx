@@ -118,13 +118,16 @@ bool strictlyOneSide(const double* const t[3], const double* x, const double* y,
   return orient3d(t[0], t[1], t[2], z) == sx;
 }
 
-// Closed coplanar triangles p and q, both non-degenerate in the projection dropping `axis`:
-// do they share a point? They are disjoint exactly when an edge line of one has the whole
-// other triangle strictly on its outer side (separating axes of convex polygons).
-bool coplanarTrianglesMeet(const double* const p[3], const double* const q[3], int axis)
+// Closed coplanar triangles p and q, non-degenerate in the projection dropping `axis`, where
+// their orientations are op and oq (not 0): do they share a point? They are disjoint exactly
+// when an edge line of one has the whole other triangle strictly on its outer side
+// (separating axes of convex polygons).
+bool coplanarTrianglesMeet(const double* const p[3],
+  int op,
+  const double* const q[3],
+  int oq,
+  int axis)
 {
-  const int op = orient2d(p[0], p[1], p[2], axis);
-  const int oq = orient2d(q[0], q[1], q[2], axis);
   auto separates = [axis](const double* const t[3], int o, const double* const other[3])
   {
     for (int i = 0; i < 3; ++i)
@@ -284,8 +287,9 @@ bool trianglesIntersectImproperly(const double* const p[3],
     // Coplanar (neighbouring triangles of a planar face): one separating-axis test in the
     // plane instead of six segment tests.
     const int axis = triangleProjectionAxis(q[0], q[1], q[2]);
-    if (axis >= 0 && orient2d(p[0], p[1], p[2], axis) != 0)
-      return coplanarTrianglesMeet(p, q, axis);
+    const int op = axis < 0 ? 0 : orient2d(p[0], p[1], p[2], axis);
+    if (op != 0)
+      return coplanarTrianglesMeet(p, op, q, orient2d(q[0], q[1], q[2], axis), axis);
   }
   if ((s0 != 0 && s1 == s0 && orient3d(q[0], q[1], q[2], p[2]) == s0) ||
     strictlyOneSide(p, q[0], q[1], q[2]))
