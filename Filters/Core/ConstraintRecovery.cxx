@@ -495,6 +495,8 @@ private:
   // later one of the same item and measure (the attempt depends on nothing else).
   std::unordered_map<std::size_t, std::unordered_map<std::uint64_t, Failure>> deepFailuresBySearch_;
   std::size_t search_ = 0; // of the current flip search
+  // The ends of the current flip search's edge when it searches for an input edge alone.
+  VertexId coneApex_ = -1, coneTip_ = -1;
   // Input edges are never removed (their faces may not be recovered yet).
   DeepEdgeRemoval deep_{ mesh_, index_, [this](VertexId a, VertexId b) {
                           return isInputEdge(a, b);
@@ -824,8 +826,19 @@ void Recovery::collectPipe(VertexId seed, const FlipCost& cost, std::vector<TetI
   };
   for (TetId t : star)
     visit(t);
+  // In the search for an edge alone, seeded at its end a, most of a's star lies away from the
+  // edge: three orientations at a rule a tet out, instead of pricing its 11 entities.
+  const bool coneTest = &cost == tetCostOwner_ && seed == coneApex_;
   for (TetId t : star)
   {
+    if (coneTest)
+    {
+      const TetVertices v = tetVertices(t);
+      const double* p[4] = { point(v[0]), point(v[1]), point(v[2]), point(v[3]) };
+      const int i = v[0] == seed ? 0 : v[1] == seed ? 1 : v[2] == seed ? 2 : 3;
+      if (geometry::segmentFromVertexMissesTet(p, i, point(coneTip_)))
+        continue;
+    }
     if (tetCost(cost, t) > 0)
       pipe.push_back(t);
   }
@@ -979,6 +992,11 @@ bool Recovery::flipUntil(VertexId seed,
   flip23Cache_.clear();
   edgeRemovalCache_.clear();
   search_ = search;
+  // An edge alone (search 2e), seeded at its first end: collectPipe's cone test applies.
+  const bool edgeAlone =
+    search < 2 * surface_.edges.size() && search % 2 == 0 && surface_.edges[search / 2][0] == seed;
+  coneApex_ = edgeAlone ? seed : -1;
+  coneTip_ = edgeAlone ? surface_.edges[search / 2][1] : -1;
   ++tetCostEpoch_; // forget the cached tet costs (in O(1))
   tetCostOwner_ = &cost;
   struct OwnerReset

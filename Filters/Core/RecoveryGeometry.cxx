@@ -107,6 +107,20 @@ int insideFace(const double* const t[4], int f, const double* x)
   return orient3d(q[0], q[1], q[2], q[3]);
 }
 
+} // namespace
+
+bool segmentFromVertexMissesTet(const double* const t[4], int i, const double* b)
+{
+  for (int f = 0; f < 4; ++f)
+  {
+    if (f != i && insideFace(t, f, b) < 0)
+      return true;
+  }
+  return false;
+}
+
+namespace
+{
 // The open segment (t[i], b) meets the open tet iff b is strictly inside the three faces
 // through t[i]: along the segment their signs are those of b scaled by the parameter, and the
 // opposite face is positive near t[i].

@@ -32,6 +32,12 @@ bool simplexMeetsTetInteriorBySeparation(const double* const* points,
   int count,
   const double* const t[4]);
 
+// The open segment (t[i], b) misses the closed tetrahedron t[0..3] (positively oriented):
+// b lies strictly outside one of the three face planes through t[i], so no point of the
+// segment but t[i] is in the tet's cone at t[i], which contains the tet. A quick way to rule
+// out every entity of a tet at one end of a segment before testing them one by one.
+bool segmentFromVertexMissesTet(const double* const t[4], int i, const double* b);
+
 // Point x lies on the closed triangle pqr (coplanar and inside or on its edges).
 bool pointOnTriangle(const double* x, const double* p, const double* q, const double* r);
 

@@ -308,6 +308,60 @@ TEST(RecoveryGeometry, SimplexInTetAgreesWithSeparation)
     missed[1]);
 }
 
+TEST(RecoveryGeometry, SegmentFromVertexMissesTetOnlyWhenNothingMeets)
+{
+  // The cone test at a tet vertex a rules a tet out for the open segment (a, b): then neither
+  // its interior nor any of its faces or edges may meet the segment. When it does not rule the
+  // tet out, b lies in the closed cone, so something of the tet near a does. Small integer
+  // coordinates give many coplanar configurations (b on a face plane through a).
+  std::mt19937 rng(2026);
+  int ruledOut = 0, kept = 0;
+  for (int trial = 0; trial < 200000; ++trial)
+  {
+    std::uniform_int_distribution<int> cell(-2, 2);
+    double p[5][3];
+    for (auto& x : p)
+      for (double& c : x)
+        c = cell(rng);
+    const double* t[4] = { p[0], p[1], p[2], p[3] };
+    const int orientation = predicates::orient3d(t[0], t[1], t[2], t[3]);
+    if (orientation == 0)
+      continue;
+    if (orientation < 0)
+      std::swap(t[0], t[1]);
+    const int i = static_cast<int>(rng() % 4);
+    const double* a = t[i];
+    const double* b = p[4];
+    bool onTetVertex = false;
+    for (const double* v : t)
+      onTetVertex = onTetVertex || (v[0] == b[0] && v[1] == b[1] && v[2] == b[2]);
+    if (onTetVertex)
+      continue;
+    const double* segment[2] = { a, b };
+    bool meets = geometry::simplexMeetsTetInterior(segment, 2, t);
+    for (int f = 0; f < 4 && !meets; ++f)
+    {
+      const double* face[3];
+      for (int k = 0, n = 0; k < 4; ++k)
+        if (k != f)
+          face[n++] = t[k];
+      meets = geometry::segmentMeetsTriangle(a, b, face[0], face[1], face[2]);
+    }
+    for (int u = 0; u < 4 && !meets; ++u)
+      for (int v = u + 1; v < 4 && !meets; ++v)
+        meets = u != i && v != i && geometry::segmentsCross(a, b, t[u], t[v]);
+    if (geometry::segmentFromVertexMissesTet(t, i, b))
+    {
+      ASSERT_FALSE(meets) << "trial " << trial;
+      ++ruledOut;
+    }
+    else
+      ++kept;
+  }
+  EXPECT_GT(ruledOut, 20000);
+  EXPECT_GT(kept, 20000);
+}
+
 TEST(RecoveryGeometry, SegmentsCrossAndSimplexInTet)
 {
   const double a[3] = { 0, 0, 0 }, b[3] = { 1, 1, 0 }, c[3] = { 1, 0, 0 }, d[3] = { 0, 1, 0 };
