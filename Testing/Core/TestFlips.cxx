@@ -225,6 +225,20 @@ TEST(Flips, SteinerPointRemovedByFourToOne)
   EXPECT_EQ(checkOrientation(mesh), "");
 }
 
+namespace
+{
+// The first four points of p as a positively oriented tet in t; false when they are coplanar.
+bool positiveTetOf(const double (*p)[3], const double* t[4])
+{
+  for (int k = 0; k < 4; ++k)
+    t[k] = p[k];
+  const int orientation = predicates::orient3d(t[0], t[1], t[2], t[3]);
+  if (orientation < 0)
+    std::swap(t[0], t[1]);
+  return orientation != 0;
+}
+} // namespace
+
 TEST(RecoveryGeometry, SegmentAndTriangle)
 {
   const double p[3] = { 0, 0, 0 }, q[3] = { 1, 0, 0 }, r[3] = { 0, 1, 0 };
@@ -263,12 +277,9 @@ TEST(RecoveryGeometry, SimplexInTetAgreesWithSeparation)
     for (auto& x : p)
       for (double& c : x)
         c = lattice ? cell(rng) : any(rng);
-    const double* t[4] = { p[0], p[1], p[2], p[3] };
-    const int orientation = predicates::orient3d(t[0], t[1], t[2], t[3]);
-    if (orientation == 0)
+    const double* t[4];
+    if (!positiveTetOf(p, t))
       continue;
-    if (orientation < 0)
-      std::swap(t[0], t[1]);
     // A simplex from a tet vertex (every other segment: from anywhere); its other vertices
     // are new points or other tet vertices.
     const int count = 2 + trial % 2;
@@ -323,12 +334,9 @@ TEST(RecoveryGeometry, SegmentFromVertexMissesTetOnlyWhenNothingMeets)
     for (auto& x : p)
       for (double& c : x)
         c = cell(rng);
-    const double* t[4] = { p[0], p[1], p[2], p[3] };
-    const int orientation = predicates::orient3d(t[0], t[1], t[2], t[3]);
-    if (orientation == 0)
+    const double* t[4];
+    if (!positiveTetOf(p, t))
       continue;
-    if (orientation < 0)
-      std::swap(t[0], t[1]);
     const int i = static_cast<int>(rng() % 4);
     const double* a = t[i];
     const double* b = p[4];
