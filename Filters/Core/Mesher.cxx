@@ -2,6 +2,7 @@
 
 #include "ConstraintRecovery.h"
 #include "Delaunay.h"
+#include "FlatTetRemoval.h"
 #include "MemoryBudget.h"
 #include "Regions.h"
 #include "SteinerRemoval.h"
@@ -140,6 +141,14 @@ MesherResult meshSurface(const double* points,
   stageStart = std::chrono::steady_clock::now();
   RegionResult regions = classifyRegions(mesh, regionOptions);
   result.regionCount = regions.regionCount;
+  if (options.removeFlatTets)
+  {
+    const auto flatStart = std::chrono::steady_clock::now();
+    const FlatTetRemovalResult flat = removeFlatTets(mesh, regions.tetRegion);
+    result.flatTetsBefore = flat.flatBefore;
+    result.flatTetsAfter = flat.flatAfter;
+    result.flatTetSeconds = secondsSince(flatStart);
+  }
 
   // Compaction: input points keep their ids, used Steiner points follow in insertion order.
   std::vector<std::int32_t> newId(mesh.vertexCount(), -1);
@@ -191,7 +200,7 @@ MesherResult meshSurface(const double* points,
         result.boundaryFaceTet[i] = static_cast<std::int32_t>(4 * k + f);
     }
   }
-  result.regionsSeconds = secondsSince(stageStart);
+  result.regionsSeconds = secondsSince(stageStart) - result.flatTetSeconds;
   for (std::int32_t i = 0; i < triangleCount; ++i)
   {
     if (result.boundaryFaceTet[i] < 0)

@@ -30,6 +30,10 @@ struct MesherOptions
   int maxMovesPerItem = 500;
   // After recovery, take out the Steiner points that flips can remove.
   bool removeSteinerPoints = true;
+  // Flip away the tets whose volume rounds to zero or below in doubles (FlatTetRemoval.h),
+  // after exterior removal. Off by default: a mesh that is refined and optimised next does not
+  // need it (the optimiser lifts them); on for a boundary mesh that is the output.
+  bool removeFlatTets = false;
   // Run SurfaceDiagnosis first (self-intersections etc.) and refuse defective input with its
   // message. Without it, such input fails later in recovery, still naming an item.
   bool validateInput = true;
@@ -54,7 +58,10 @@ struct MesherResult
   int regionCount = 0;
   int flips23 = 0;
   int edgeRemovals = 0;
-  int cavityCones = 0; // missing edges recovered by refilling their cavity (CavityCone.h)
+  int cavityCones = 0;    // missing edges recovered by refilling their cavity (CavityCone.h)
+  int flatTetsBefore = 0; // flat-in-doubles tets before and after removeFlatTets (when on)
+  int flatTetsAfter = 0;
+  double flatTetSeconds = 0;
   double delaunaySeconds = 0;
   double recoverySeconds = 0;
   double regionsSeconds = 0;

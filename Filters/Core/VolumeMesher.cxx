@@ -42,23 +42,29 @@ VolumeMeshResult meshVolume(const double* points,
   const double boundaryShare = later ? 0.4 : 1.0;
   const double refineEnd = options.optimize ? 0.75 : 1.0;
 
+  // A boundary mesh that is the output gets its flat-in-doubles tets flipped away; a mesh
+  // refined and optimised next leaves them to the optimiser.
+  MesherOptions boundaryOptions = options.boundary;
+  boundaryOptions.removeFlatTets = boundaryOptions.removeFlatTets || !later;
   MesherResult boundary = meshSurface(points,
     pointCount,
     triangles,
     triangleCount,
-    options.boundary,
+    boundaryOptions,
     subProgress(progress, 0.0, boundaryShare));
   result.steinerPoints = boundary.steinerPoints;
   result.regionCount = boundary.regionCount;
   {
     const double total =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - lapStart).count();
-    const double parts =
-      boundary.delaunaySeconds + boundary.recoverySeconds + boundary.regionsSeconds;
+    const double parts = boundary.delaunaySeconds + boundary.recoverySeconds +
+      boundary.regionsSeconds + boundary.flatTetSeconds;
     result.stageSeconds = { { "surface input and checks", std::max(0.0, total - parts) },
       { "Delaunay of the surface points", boundary.delaunaySeconds },
       { "boundary recovery", boundary.recoverySeconds },
       { "regions and compaction", boundary.regionsSeconds } };
+    if (boundaryOptions.removeFlatTets)
+      result.stageSeconds.emplace_back("flat tets flipped away", boundary.flatTetSeconds);
     lapStart = std::chrono::steady_clock::now();
   }
   if (!boundary.ok)

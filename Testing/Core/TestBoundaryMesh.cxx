@@ -6,6 +6,7 @@
 #include "Mesher.h"
 #include "SurfaceDiagnosis.h"
 #include "SurfaceGenerators.h"
+#include "TetQuality.h"
 #include "TriangleDistance.h"
 
 #include <gtest/gtest.h>
@@ -133,6 +134,63 @@ TEST(BoundaryMesh, LatitudeLongitudeSphere)
 {
   Surface s = uvSphere(100, 100);
   meshAndCheck(s, allOutward(s), 1);
+}
+
+// Co-circular surface points (the latitude rings of a sphere, a torus's circles) give the
+// boundary mesh tets that are positive in exact arithmetic but whose volume rounds to zero or
+// below in doubles. With removeFlatTets, flips take most of them out and the boundary mesh
+// keeps every exact property; the count it reports is recounted here through TetQuality,
+// whose Q is 0 exactly for such tets.
+TEST(BoundaryMesh, FlatTetsFlippedAway)
+{
+  struct Case
+  {
+    const char* name;
+    Surface surface;
+  };
+  const Case cases[] = { { "uv sphere 100x100", uvSphere(100, 100) },
+    { "torus 48x24", torus(1.0, 0.3, 48, 24) },
+    { "torus 24x12", torus(1.0, 0.3, 24, 12) } };
+  int before = 0, after = 0;
+  for (const Case& c : cases)
+  {
+    SCOPED_TRACE(c.name);
+    MesherOptions options;
+    options.removeFlatTets = true;
+    const MesherResult r = meshAndCheck(c.surface, allOutward(c.surface), 1, options);
+    ASSERT_TRUE(r.ok);
+    int flat = 0;
+    for (std::size_t k = 0; k < r.tets.size(); k += 4)
+    {
+      const double* p[4];
+      for (int i = 0; i < 4; ++i)
+        p[i] = &r.points[3 * static_cast<std::size_t>(r.tets[k + i])];
+      // VTK order: the first two swapped.
+      flat += measureTet(p[1], p[0], p[2], p[3]).quality == 0 ? 1 : 0;
+    }
+    EXPECT_EQ(flat, r.flatTetsAfter);
+    EXPECT_LE(r.flatTetsAfter, r.flatTetsBefore);
+    std::printf("  %s: flat tets %d -> %d\n", c.name, r.flatTetsBefore, r.flatTetsAfter);
+    before += r.flatTetsBefore;
+    after += r.flatTetsAfter;
+    // Off, the same surface keeps them all.
+    const MesherResult raw = meshSurface(c.surface.points.data(),
+      c.surface.pointCount(),
+      c.surface.triangles.data(),
+      c.surface.triangleCount());
+    int rawFlat = 0;
+    for (std::size_t k = 0; k < raw.tets.size(); k += 4)
+    {
+      const double* p[4];
+      for (int i = 0; i < 4; ++i)
+        p[i] = &raw.points[3 * static_cast<std::size_t>(raw.tets[k + i])];
+      rawFlat += measureTet(p[1], p[0], p[2], p[3]).quality == 0 ? 1 : 0;
+    }
+    EXPECT_EQ(rawFlat, r.flatTetsBefore);
+  }
+  // The cases have flat tets to remove, and most go.
+  EXPECT_GT(before, 20);
+  EXPECT_LT(3 * after, before);
 }
 
 TEST(BoundaryMesh, SlottedRing)

@@ -1,0 +1,37 @@
+// Tets that are positive in exact arithmetic but whose volume rounds to zero or below in
+// double precision ("flat in doubles"). The boundary mesh of nearly co-circular or nearly
+// coplanar surface points (the latitude rings of a sphere, a torus's circles) has such tets:
+// exact predicates keep them valid, but the output's Quality reports them as 0 and any tool
+// that measures volume in doubles (VTK's cell quality, a solver's Jacobian) sees degenerate or
+// inverted cells. Flips that lower their number take most of them out without adding a point.
+#pragma once
+
+#include "MeshTopology.h"
+#include "TetMesh.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace tetmesher
+{
+
+// True when tet (a,b,c,d) (TetMesh order, orient3d > 0) has a volume that is not positive when
+// evaluated in doubles as TetQuality measures it (VTK order: the Quality array's 0).
+bool flatInDoubles(const TetMesh& mesh, const TetVertices& t);
+
+struct FlatTetRemovalResult
+{
+  int flatBefore = 0; // flat-in-doubles tets with a region, before and after
+  int flatAfter = 0;
+  int moves = 0; // 2-3 flips and edge removals made
+};
+
+// Removes flat-in-doubles tets among those with tetRegion[t] >= 0 (classifyRegions: -1 for the
+// exterior and holes) by 2-3 flips and edge removals that lower the number of such tets where
+// they apply. No vertex is added or moved, constrained faces (input triangles, interfaces) are
+// never flipped, and no move crosses one, so every region and the boundary stay as they were;
+// new tets take the region of the tets they replace (tetRegion grows with the mesh). Each
+// move removes at least one flat tet, so at most flatBefore moves are made.
+FlatTetRemovalResult removeFlatTets(TetMesh& mesh, std::vector<std::int32_t>& tetRegion);
+
+} // namespace tetmesher
