@@ -1498,16 +1498,17 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
          << surface_.edgeFirstTriangle[e];
     return name.str();
   };
-  // The flip search for input edge e: by the edge alone, then with its triangles. True when
-  // the edge is in the mesh; else the failure is recorded (unless interrupted).
-  auto flipToEdge = [&](std::size_t e)
+  // The flip search for input edge e: by the edge alone, then (withFaces) with its
+  // triangles. True when the edge is in the mesh; else the failure is recorded (unless
+  // interrupted).
+  auto flipToEdge = [&](std::size_t e, bool withFaces)
   {
     const VertexId a = edges[e][0], b = edges[e][1];
     auto exists = [&] { return edgePresent(e); };
     currentItem_ = edgeName(e);
     if (flipUntil(a, edgeCost(a, b), exists, 2 * e))
       return true;
-    if (!interrupted_ && flipUntil(a, edgeAndFacesCost(e), exists, 2 * e + 1))
+    if (!interrupted_ && withFaces && flipUntil(a, edgeAndFacesCost(e), exists, 2 * e + 1))
       return true;
     if (!interrupted_)
       recordFailure(failures_[e], a, lastSearchCost_);
@@ -1541,7 +1542,12 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
         return result_;
       if (edgePresent(e) || unchangedSince(failures_[e]))
         continue;
-      flipToEdge(e);
+      // The first sweep searches by the edge alone: the search with the edge's triangles
+      // seldom finds what this one missed (alternator: 41 of 325 edges), and costs as much.
+      // It runs from the next round on, and before an edge's Steiner point when the mesh
+      // around it changed. Over Data/ and TetGen's test models: recovery 4.48 -> 4.09 s,
+      // Steiner points 447 -> 425 (the fetched corpus: 138 -> 147); 2026-11-29.
+      flipToEdge(e, round > 0);
       if (interrupted_)
         return result_;
     }
@@ -1666,7 +1672,7 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
         // may have freed its flips: search again before placing one for this edge.
         if (!unchangedSince(failures_[e]))
         {
-          if (flipToEdge(e))
+          if (flipToEdge(e, true))
             break;
           if (interrupted_)
             return result_;

@@ -458,9 +458,12 @@ TEST(BoundaryMesh, SlowCorpusSurfaces)
   // stuck edge's flip search just before its Steiner point more (15, 0, 13, 26; the bounds
   // for couplingdown, rotor_small and turbine fail without it). Refilling the cavity of a stuck
   // edge by a cone from one of its ends before placing a Steiner point (CavityCone.h) leaves
-  // 14, 0, 2, 23. Deterministic counts, not timings.
+  // 14, 0, 2, 23. A first sweep that searches each edge alone (the search with its triangles
+  // from the next round on) leaves 14, 1, 2, 24: recovery is 11% faster on the CAD parts and
+  // leaves fewer Steiner points over Data/ and TetGen's test models (447 -> 425), but one more
+  // here on two of them. Deterministic counts, not timings.
   const std::pair<const char*, int> cases[] = {
-    { "anchor.off", 14 }, { "couplingdown.off", 0 }, { "rotor_small.off", 2 }, { "turbine.off", 23 }
+    { "anchor.off", 14 }, { "couplingdown.off", 1 }, { "rotor_small.off", 2 }, { "turbine.off", 24 }
   };
   for (const auto& [name, maxSteiner] : cases)
   {

@@ -116,9 +116,13 @@ TEST(FuzzRegressions, NearlyTouchingTrianglesAreMeshedOrNamed)
   options.refillCavities = false;
   const tetmesher::RecoveryResult recovery = tetmesher::recoverBoundary(mesh, input, options);
   EXPECT_FALSE(recovery.ok);
-  EXPECT_NE(recovery.error.find("could not recover input edge (233,234)"), std::string::npos)
+  // Which edge gets stuck first depends on the order of the flip searches: (233,234) of
+  // triangle 393 or (232,233) of triangle 392, neighbours that both nearly touch face 0.
+  EXPECT_TRUE(recovery.error.find("could not recover input edge (233,234)") != std::string::npos ||
+    recovery.error.find("could not recover input edge (232,233)") != std::string::npos)
     << recovery.error;
-  EXPECT_NE(recovery.error.find("input triangles 0 and 393 touch"), std::string::npos)
+  EXPECT_TRUE(recovery.error.find("input triangles 0 and 392 touch") != std::string::npos ||
+    recovery.error.find("input triangles 0 and 393 touch") != std::string::npos)
     << recovery.error;
   EXPECT_NE(recovery.error.find("nearly self-intersecting input"), std::string::npos)
     << recovery.error;
