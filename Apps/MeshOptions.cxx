@@ -27,6 +27,7 @@ SURFACE: .stl .obj .ply .vtp .vtk .off          OUT: .vtu or .vtk
 options:
   -o, --output FILE     where to write the mesh (required)
   --boundary-only       the boundary mesh alone: no interior points, no optimisation
+                        (flips take out most tets whose volume rounds to zero)
   --size H              constant wanted edge length H
   --size-array NAME     wanted edge length from the surface's point array NAME
   --background FILE     controlling space: any VTK dataset with a point array of sizes
