@@ -143,6 +143,19 @@ TEST(BoundaryMesh, LatitudeLongitudeSphere)
 // whose Q is 0 exactly for such tets.
 TEST(BoundaryMesh, FlatTetsFlippedAway)
 {
+  // Tets whose Quality (TetQuality, in VTK order: the first two vertices swapped) is 0.
+  auto flatTets = [](const MesherResult& r)
+  {
+    int flat = 0;
+    for (std::size_t k = 0; k < r.tets.size(); k += 4)
+    {
+      const double* p[4];
+      for (int i = 0; i < 4; ++i)
+        p[i] = &r.points[3 * static_cast<std::size_t>(r.tets[k + i])];
+      flat += measureTet(p[1], p[0], p[2], p[3]).quality == 0 ? 1 : 0;
+    }
+    return flat;
+  };
   struct Case
   {
     const char* name;
@@ -159,16 +172,7 @@ TEST(BoundaryMesh, FlatTetsFlippedAway)
     options.removeFlatTets = true;
     const MesherResult r = meshAndCheck(c.surface, allOutward(c.surface), 1, options);
     ASSERT_TRUE(r.ok);
-    int flat = 0;
-    for (std::size_t k = 0; k < r.tets.size(); k += 4)
-    {
-      const double* p[4];
-      for (int i = 0; i < 4; ++i)
-        p[i] = &r.points[3 * static_cast<std::size_t>(r.tets[k + i])];
-      // VTK order: the first two swapped.
-      flat += measureTet(p[1], p[0], p[2], p[3]).quality == 0 ? 1 : 0;
-    }
-    EXPECT_EQ(flat, r.flatTetsAfter);
+    EXPECT_EQ(flatTets(r), r.flatTetsAfter);
     EXPECT_LE(r.flatTetsAfter, r.flatTetsBefore);
     std::printf("  %s: flat tets %d -> %d\n", c.name, r.flatTetsBefore, r.flatTetsAfter);
     before += r.flatTetsBefore;
@@ -178,15 +182,7 @@ TEST(BoundaryMesh, FlatTetsFlippedAway)
       c.surface.pointCount(),
       c.surface.triangles.data(),
       c.surface.triangleCount());
-    int rawFlat = 0;
-    for (std::size_t k = 0; k < raw.tets.size(); k += 4)
-    {
-      const double* p[4];
-      for (int i = 0; i < 4; ++i)
-        p[i] = &raw.points[3 * static_cast<std::size_t>(raw.tets[k + i])];
-      rawFlat += measureTet(p[1], p[0], p[2], p[3]).quality == 0 ? 1 : 0;
-    }
-    EXPECT_EQ(rawFlat, r.flatTetsBefore);
+    EXPECT_EQ(flatTets(raw), r.flatTetsBefore);
   }
   // The cases have flat tets to remove, and most go.
   EXPECT_GT(before, 20);
