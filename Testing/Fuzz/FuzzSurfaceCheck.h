@@ -105,6 +105,8 @@ inline std::string runFuzzSurface(const std::uint8_t* data, std::size_t size)
 
   MesherOptions options;
   options.enclosedShellsAreHoles = s.enclosedShellsAreHoles;
+  // As for a boundary mesh that is the output (--boundary-only): its flat tets flipped away.
+  options.removeFlatTets = true;
   const MesherResult r = meshSurface(s.points.data(), n, s.triangles.data(), m, options);
   if (!r.ok && r.error.empty())
     return "meshSurface failed without a message";
@@ -142,6 +144,7 @@ inline std::string runFuzzSurface(const std::uint8_t* data, std::size_t size)
   // indices), always with a message; a mesh it returns keeps the boundary.
   VolumeMeshOptions volumeOptions;
   volumeOptions.boundary = options;
+  volumeOptions.boundary.removeFlatTets = false; // as the pipeline runs it
   volumeOptions.refinement.maxPoints = kMaxPipelinePoints;
   const VolumeMeshResult v = meshVolume(s.points.data(), n, s.triangles.data(), m, volumeOptions);
   if (!v.ok)
