@@ -115,6 +115,9 @@ struct MemoCaches
 struct ItemCost : FlipCost
 {
   std::array<double, 6> box = { 0, 0, 0, 0, 0, 0 }; // min x, y, z, max x, y, z
+  // The ends of the segment when the item is an input edge alone (else -1): a search seeded
+  // at one end can rule out tets of that end's star by a cone test (collectPipe).
+  VertexId segment[2] = { -1, -1 };
 };
 
 // True when the points of `ids` all lie on one side of `box` along some axis: strictly
@@ -495,7 +498,8 @@ private:
   // later one of the same item and measure (the attempt depends on nothing else).
   std::unordered_map<std::size_t, std::unordered_map<std::uint64_t, Failure>> deepFailuresBySearch_;
   std::size_t search_ = 0; // of the current flip search
-  // The ends of the current flip search's edge when it searches for an input edge alone.
+  // The current flip search's seed and the other end of its segment, when it searches for an
+  // input edge alone seeded at one end (ItemCost::segment); coneApex_ is -1 otherwise.
   VertexId coneApex_ = -1, coneTip_ = -1;
   // Input edges are never removed (their faces may not be recovered yet).
   DeepEdgeRemoval deep_{ mesh_, index_, [this](VertexId a, VertexId b) {
@@ -696,6 +700,8 @@ ItemCost Recovery::edgeCost(VertexId a, VertexId b) const
 {
   ItemCost c;
   c.box = boxOf({ a, b });
+  c.segment[0] = a;
+  c.segment[1] = b;
   c.tet = [this, a, b](const TetVertices& t)
   {
     const double* s[2] = { point(a), point(b) };
@@ -992,11 +998,10 @@ bool Recovery::flipUntil(VertexId seed,
   flip23Cache_.clear();
   edgeRemovalCache_.clear();
   search_ = search;
-  // An edge alone (search 2e), seeded at its first end: collectPipe's cone test applies.
-  const bool edgeAlone =
-    search < 2 * surface_.edges.size() && search % 2 == 0 && surface_.edges[search / 2][0] == seed;
-  coneApex_ = edgeAlone ? seed : -1;
-  coneTip_ = edgeAlone ? surface_.edges[search / 2][1] : -1;
+  // An edge alone, seeded at one of its ends: collectPipe's cone test applies.
+  const VertexId* segment = exactCost.segment;
+  coneApex_ = seed == segment[0] || seed == segment[1] ? seed : -1;
+  coneTip_ = seed == segment[0] ? segment[1] : segment[0];
   ++tetCostEpoch_; // forget the cached tet costs (in O(1))
   tetCostOwner_ = &cost;
   struct OwnerReset

@@ -1,24 +1,16 @@
 #include "FlatTetRemoval.h"
 
 #include "Flips.h"
+#include "TetQuality.h"
 
 namespace tetmesher
 {
 
 bool flatInDoubles(const TetMesh& mesh, const TetVertices& t)
 {
-  // VTK order swaps the first two vertices; then the volume as TetQuality computes it:
-  // (b - a) . ((c - a) x (d - a)) / 6, the same operations in the same order.
-  const double* p[4] = { mesh.point(t[1]), mesh.point(t[0]), mesh.point(t[2]), mesh.point(t[3]) };
-  double e[3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int k = 0; k < 3; ++k)
-      e[i][k] = p[i + 1][k] - p[0][k];
-  const double x[3] = { e[1][1] * e[2][2] - e[1][2] * e[2][1],
-    e[1][2] * e[2][0] - e[1][0] * e[2][2],
-    e[1][0] * e[2][1] - e[1][1] * e[2][0] };
-  const double volume = (e[0][0] * x[0] + e[0][1] * x[1] + e[0][2] * x[2]) / 6.0;
-  return !(volume > 0);
+  // VTK order swaps the first two vertices.
+  return !(
+    tetSignedVolume(mesh.point(t[1]), mesh.point(t[0]), mesh.point(t[2]), mesh.point(t[3])) > 0);
 }
 
 FlatTetRemovalResult removeFlatTets(TetMesh& mesh, std::vector<std::int32_t>& tetRegion)

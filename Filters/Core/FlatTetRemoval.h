@@ -15,8 +15,8 @@
 namespace tetmesher
 {
 
-// True when tet (a,b,c,d) (TetMesh order, orient3d > 0) has a volume that is not positive when
-// evaluated in doubles as TetQuality measures it (VTK order: the Quality array's 0).
+// True when tet (a,b,c,d) (TetMesh order, orient3d > 0) has a volume that is not positive in
+// doubles (tetSignedVolume in VTK order, as TetQuality measures it: the Quality array's 0).
 bool flatInDoubles(const TetMesh& mesh, const TetVertices& t);
 
 struct FlatTetRemovalResult

@@ -53,7 +53,7 @@ RawShape measureRaw(const double* a,
 {
   const double* p[4] = { a, b, c, d };
   RawShape s{};
-  s.volume = dot(sub(b, a), cross(sub(c, a), sub(d, a))) / 6.0;
+  s.volume = tetSignedVolume(a, b, c, d);
   // Outward area vectors of the face opposite each vertex (any consistent sign works for
   // angles: the dihedral angle at an edge is pi minus the angle between the two normals).
   Vec3 normal[4];

@@ -30,6 +30,18 @@ struct TetShape
                            // is orient3d < 0 in Shewchuk's sign, TetMesh's convention.
 };
 
+// det[b-a, c-a, d-a] / 6 in doubles: TetShape::signedVolume, computed the same way (VTK order).
+inline double tetSignedVolume(const double* a, const double* b, const double* c, const double* d)
+{
+  const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+  const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+  const double w[3] = { d[0] - a[0], d[1] - a[1], d[2] - a[2] };
+  const double x[3] = {
+    v[1] * w[2] - v[2] * w[1], v[2] * w[0] - v[0] * w[2], v[0] * w[1] - v[1] * w[0]
+  };
+  return (u[0] * x[0] + u[1] * x[1] + u[2] * x[2]) / 6.0;
+}
+
 // Shape of the tet (a,b,c,d) in VTK order. Quality is 0 when signedVolume is not positive.
 TetShape measureTet(const double* a, const double* b, const double* c, const double* d);
 
