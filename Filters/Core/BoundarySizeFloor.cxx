@@ -67,6 +67,14 @@ BoundarySizeFloor::BoundarySizeFloor(const double* points,
     for (const Face& f : faces_)
       origin_[a] = std::min(origin_[a], f.box[a] - f.reach);
   }
+  // (cell key, entry) pairs in face order, then bucketed by cell (a counting sort over the
+  // cells' dense indices) and each cell's list sorted.
+  struct Listing
+  {
+    std::uint64_t key;
+    Entry entry;
+  };
+  std::vector<Listing> listings;
   for (std::size_t id = 0; id < faces_.size(); ++id)
   {
     const Face& f = faces_[id];
@@ -118,12 +126,30 @@ BoundarySizeFloor::BoundarySizeFloor(const double* points,
           if (!(gap < f.reach))
             continue;
           const double bound = f.size - slope_ * std::max(gap, 0.0) * (1 - 1e-9);
-          cells_[key(i, j, k)].push_back({ bound, static_cast<std::int32_t>(id) });
+          listings.push_back({ key(i, j, k), { bound, static_cast<std::int32_t>(id) } });
         }
   }
-  for (auto& [cellKey, entries] : cells_)
-    std::sort(entries.begin(),
-      entries.end(),
+  std::vector<std::int32_t> cellOfListing(listings.size());
+  std::int32_t cellCount = 0;
+  for (std::size_t n = 0; n < listings.size(); ++n)
+  {
+    if (cellIndex_.insert(listings[n].key, cellCount))
+      ++cellCount;
+    cellOfListing[n] = *cellIndex_.find(listings[n].key);
+  }
+  cellStart_.assign(static_cast<std::size_t>(cellCount) + 1, 0);
+  for (const std::int32_t c : cellOfListing)
+    ++cellStart_[static_cast<std::size_t>(c) + 1];
+  for (std::size_t c = 0; c < static_cast<std::size_t>(cellCount); ++c)
+    cellStart_[c + 1] += cellStart_[c];
+  entries_.resize(listings.size());
+  std::vector<std::int32_t> fill(cellStart_.begin(), cellStart_.end() - 1);
+  for (std::size_t n = 0; n < listings.size(); ++n)
+    entries_[static_cast<std::size_t>(fill[static_cast<std::size_t>(cellOfListing[n])]++)] =
+      listings[n].entry;
+  for (std::size_t c = 0; c < static_cast<std::size_t>(cellCount); ++c)
+    std::sort(entries_.begin() + cellStart_[c],
+      entries_.begin() + cellStart_[c + 1],
       [](const Entry& x, const Entry& y)
       { return x.bound != y.bound ? x.bound > y.bound : x.face < y.face; });
 }
@@ -138,11 +164,15 @@ double BoundarySizeFloor::at(const double* p, double atLeast) const
   std::int64_t c[3];
   if (!cellOf(p, c))
     return best;
-  const auto it = cells_.find(key(c[0], c[1], c[2]));
-  if (it == cells_.end())
+  const std::int32_t* cell = cellIndex_.find(key(c[0], c[1], c[2]));
+  if (!cell)
     return best;
-  for (const Entry& e : it->second)
+  const std::size_t end = static_cast<std::size_t>(cellStart_[static_cast<std::size_t>(*cell) + 1]);
+  for (std::size_t n = static_cast<std::size_t>(cellStart_[static_cast<std::size_t>(*cell)]);
+       n < end;
+       ++n)
   {
+    const Entry& e = entries_[n];
     if (!(e.bound > best))
       break;
     consider(faces_[static_cast<std::size_t>(e.face)], p, best);

@@ -9,8 +9,9 @@
 // to h at (s_F - h) / slope, and the lattice levels and splits fill a graded layer.
 #pragma once
 
+#include "EpochHashTable.h"
+
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace tetmesher
@@ -58,13 +59,18 @@ private:
   std::vector<Face> faces_;
   // Each face is listed in every cell its reach touches, with a bound on its floor over the
   // cell, largest first: a query reads p's cell alone and stops at the first bound that
-  // cannot beat what it has.
+  // cannot beat what it has. The lists lie end to end in entries_ (cell c's from
+  // cellStart_[c] to cellStart_[c + 1]), the cells found by key in a flat table: a map of
+  // vectors took 3/4 of the construction in allocations (fandisk at h = 0.0103: 617k
+  // entries in 40k cells, 0.18 s).
   struct Entry
   {
     double bound;
     std::int32_t face;
   };
-  std::unordered_map<std::uint64_t, std::vector<Entry>> cells_;
+  EpochHashTable<std::uint64_t, std::int32_t, MixHash64> cellIndex_;
+  std::vector<std::int32_t> cellStart_;
+  std::vector<Entry> entries_;
   std::vector<std::int32_t> large_; // faces over kMaxCellsPerFace cells, read by every query
 };
 
