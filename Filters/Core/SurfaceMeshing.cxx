@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 namespace tetmesher
@@ -210,22 +211,23 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
   lap("quality arrays");
 
   // The paper's figure 6 shows the histogram before and after optimisation. Only Q is used:
-  // measureTetForOptimization gives it bit for bit with one arc cosine fewer per tet.
-  std::vector<TetShape> before;
+  // measureTetQuality gives it bit for bit without the dihedral angles.
+  std::vector<double> before;
   before.reserve(result.tetsBeforeOptimization.size() / 4);
+  double minimumBefore = std::numeric_limits<double>::infinity();
   for (std::size_t t = 0; t + 3 < result.tetsBeforeOptimization.size(); t += 4)
   {
     const double* p[4];
     for (int i = 0; i < 4; ++i)
       p[i] = &result.points[3 *
         static_cast<std::size_t>(result.tetsBeforeOptimization[t + kVtkFromCore[i]])];
-    before.push_back(measureTetForOptimization(p[0], p[1], p[2], p[3], nullptr));
+    before.push_back(measureTetQuality(p[0], p[1], p[2], p[3]));
+    minimumBefore = std::min(minimumBefore, before.back());
   }
   if (!before.empty())
   {
     out.histogramBefore = qualityHistogram(before, settings.numberOfBins);
-    out.fieldData.emplace_back(
-      "QualityMinimumBeforeOptimization", summarizeQuality(before).minimum);
+    out.fieldData.emplace_back("QualityMinimumBeforeOptimization", minimumBefore);
   }
   lap("histograms");
   progress(1.0);

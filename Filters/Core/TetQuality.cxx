@@ -45,6 +45,26 @@ struct RawShape
   double minDihedral, maxDihedral;
 };
 
+// Outward area vectors of the face opposite each vertex (any consistent sign works for
+// angles: the dihedral angle at an edge is pi minus the angle between the two normals),
+// their lengths, and the volume, area sum and edge lengths of s.
+void measureFacesAndEdges(const double* const p[4],
+  RawShape& s,
+  Vec3 normal[4],
+  double normalLength[4])
+{
+  s.volume = tetSignedVolume(p[0], p[1], p[2], p[3]);
+  const int faces[4][3] = { { 1, 2, 3 }, { 0, 3, 2 }, { 0, 1, 3 }, { 0, 2, 1 } };
+  for (int f = 0; f < 4; ++f)
+  {
+    normal[f] = cross(sub(p[faces[f][1]], p[faces[f][0]]), sub(p[faces[f][2]], p[faces[f][0]]));
+    normalLength[f] = norm(normal[f]);
+    s.areaSum += 0.5 * normalLength[f];
+  }
+  for (int e = 0; e < 6; ++e)
+    s.edgeLength[e] = norm(sub(p[kEdges[e][0]], p[kEdges[e][1]]));
+}
+
 RawShape measureRaw(const double* a,
   const double* b,
   const double* c,
@@ -53,18 +73,9 @@ RawShape measureRaw(const double* a,
 {
   const double* p[4] = { a, b, c, d };
   RawShape s{};
-  s.volume = tetSignedVolume(a, b, c, d);
-  // Outward area vectors of the face opposite each vertex (any consistent sign works for
-  // angles: the dihedral angle at an edge is pi minus the angle between the two normals).
   Vec3 normal[4];
   double normalLength[4];
-  const int faces[4][3] = { { 1, 2, 3 }, { 0, 3, 2 }, { 0, 1, 3 }, { 0, 2, 1 } };
-  for (int f = 0; f < 4; ++f)
-  {
-    normal[f] = cross(sub(p[faces[f][1]], p[faces[f][0]]), sub(p[faces[f][2]], p[faces[f][0]]));
-    normalLength[f] = norm(normal[f]);
-    s.areaSum += 0.5 * normalLength[f];
-  }
+  measureFacesAndEdges(p, s, normal, normalLength);
   // The dihedral angle 180 - acos(cosine) grows with the cosine, so the extreme angles come
   // from the extreme cosines: two acos per tet instead of six (the same values bit for bit).
   double lowCosine = 2.0, highCosine = -2.0;
@@ -72,7 +83,6 @@ RawShape measureRaw(const double* a,
   for (int e = 0; e < 6; ++e)
   {
     int i = kEdges[e][0], j = kEdges[e][1];
-    s.edgeLength[e] = norm(sub(p[i], p[j]));
     // The two faces containing edge (i,j) are those opposite the other two vertices.
     int k = -1, l = -1;
     for (int v = 0; v < 4; ++v)
@@ -121,6 +131,18 @@ TetShape measureTet(const double* a, const double* b, const double* c, const dou
   double inradius = s.areaSum > 0 ? 3.0 * s.volume / s.areaSum : 0.0;
   double longest = *std::max_element(s.edgeLength, s.edgeLength + 6);
   return finish(s, inradius, longest);
+}
+
+double measureTetQuality(const double* a, const double* b, const double* c, const double* d)
+{
+  const double* p[4] = { a, b, c, d };
+  RawShape s{};
+  Vec3 normal[4];
+  double normalLength[4];
+  measureFacesAndEdges(p, s, normal, normalLength);
+  double inradius = s.areaSum > 0 ? 3.0 * s.volume / s.areaSum : 0.0;
+  double longest = *std::max_element(s.edgeLength, s.edgeLength + 6);
+  return finish(s, inradius, longest).quality;
 }
 
 TetShape measureTetScaled(const double* a,
@@ -191,16 +213,30 @@ QualitySummary summarizeQuality(const std::vector<TetShape>& shapes)
   return summary;
 }
 
-std::vector<std::int64_t> qualityHistogram(const std::vector<TetShape>& shapes, int binCount)
+namespace
+{
+template<typename Quality>
+std::vector<std::int64_t> histogramOf(std::size_t count, int binCount, const Quality& quality)
 {
   std::vector<std::int64_t> bins(static_cast<std::size_t>(std::max(binCount, 1)), 0);
-  for (const TetShape& s : shapes)
+  for (std::size_t n = 0; n < count; ++n)
   {
-    int bin = static_cast<int>(s.quality * static_cast<double>(bins.size()));
+    int bin = static_cast<int>(quality(n) * static_cast<double>(bins.size()));
     bin = std::clamp(bin, 0, static_cast<int>(bins.size()) - 1);
     ++bins[static_cast<std::size_t>(bin)];
   }
   return bins;
+}
+} // namespace
+
+std::vector<std::int64_t> qualityHistogram(const std::vector<TetShape>& shapes, int binCount)
+{
+  return histogramOf(shapes.size(), binCount, [&](std::size_t n) { return shapes[n].quality; });
+}
+
+std::vector<std::int64_t> qualityHistogram(const std::vector<double>& quality, int binCount)
+{
+  return histogramOf(quality.size(), binCount, [&](std::size_t n) { return quality[n]; });
 }
 
 std::vector<std::pair<const char*, double>> qualitySummaryFields(const QualitySummary& summary)

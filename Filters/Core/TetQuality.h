@@ -45,6 +45,9 @@ inline double tetSignedVolume(const double* a, const double* b, const double* c,
 // Shape of the tet (a,b,c,d) in VTK order. Quality is 0 when signedVolume is not positive.
 TetShape measureTet(const double* a, const double* b, const double* c, const double* d);
 
+// measureTet(a, b, c, d).quality bit for bit, without the dihedral angles (half the work).
+double measureTetQuality(const double* a, const double* b, const double* c, const double* d);
+
 // As measureTet, but Q in units of the size field: h[i] is the wanted size at vertex i (> 0).
 TetShape measureTetScaled(const double* a,
   const double* b,
@@ -80,6 +83,8 @@ QualitySummary summarizeQuality(const std::vector<TetShape>& shapes);
 
 // Histogram of Q over [0, 1] in `binCount` equal bins; Q = 1 falls in the last bin.
 std::vector<std::int64_t> qualityHistogram(const std::vector<TetShape>& shapes, int binCount);
+// The same over Q values.
+std::vector<std::int64_t> qualityHistogram(const std::vector<double>& quality, int binCount);
 
 // The summary as the field data the filters store and the CLI prints, in their order.
 std::vector<std::pair<const char*, double>> qualitySummaryFields(const QualitySummary& summary);

@@ -724,7 +724,8 @@ TEST(QualityOptimization, InsertionBudget)
 }
 
 // The optimiser's inlined measure gives the same Q and smallest dihedral angle, bit for bit,
-// as measureTetForOptimization (what vtkTetQuality reports), plain and size-scaled, on random,
+// as measureTetForOptimization (what vtkTetQuality reports), plain and size-scaled, and
+// measureTetQuality the same Q as measureTet, on random,
 // nearly flat, inverted and degenerate tets, with one h or four: otherwise "never worse after
 // optimisation" could fail by a rounding in the reported figures.
 TEST(QualityOptimization, InlinedMeasureMatchesTetQuality)
@@ -744,6 +745,9 @@ TEST(QualityOptimization, InlinedMeasureMatchesTetQuality)
     if (i % 50 == 7) // degenerate: two equal points
       for (int k = 0; k < 3; ++k)
         p[3][k] = p[1][k];
+    // The Q-only measure (the histogram before optimisation) too.
+    ASSERT_EQ(measureTetQuality(p[0], p[1], p[2], p[3]), measureTet(p[0], p[1], p[2], p[3]).quality)
+      << i;
     double h[4] = { hs(rng), hs(rng), hs(rng), hs(rng) };
     if (i % 3 == 0) // one h at the four vertices: the measure's fast path
       h[1] = h[2] = h[3] = h[0];
