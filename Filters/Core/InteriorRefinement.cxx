@@ -1226,7 +1226,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
                 }
                 else
                 {
-                  hp = interpolateSize(p, c, hc, sizeOptions.interpolationPower);
+                  hp = interpolateSizeWithCoordinates(b, hc, sizeOptions.interpolationPower);
                   if (sizeOptions.minSize > 0)
                     hp = std::max(hp, sizeOptions.minSize);
                   if (sizeOptions.maxSize > 0)

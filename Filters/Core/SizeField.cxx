@@ -85,14 +85,23 @@ double interpolateSize(const double* p,
   double power)
 {
   if (h[0] == h[1] && h[0] == h[2] && h[0] == h[3])
+    return h[0];
+  double b[4];
+  return interpolateSizeWithCoordinates(
+    barycentricCoordinates(p, corners, b) ? b : nullptr, h, power);
+}
+
+double interpolateSizeWithCoordinates(const double* coordinates, const double h[4], double power)
+{
+  if (h[0] == h[1] && h[0] == h[2] && h[0] == h[3])
     return h[0]; // exactly, whatever the weights' rounding
   double b[4];
   double sum = 0;
-  if (barycentricCoordinates(p, corners, b))
-    for (double& w : b)
+  if (coordinates)
+    for (int i = 0; i < 4; ++i)
     {
-      w = std::max(0.0, w);
-      sum += w;
+      b[i] = std::max(0.0, coordinates[i]);
+      sum += b[i];
     }
   if (!(sum > 0))
   {

@@ -42,6 +42,10 @@ double interpolateSize(const double* p,
   const double h[4],
   double power);
 
+// The same from p's barycentric coordinates b (as barycentricCoordinates gives them; nullptr
+// for a flat tet): for callers that have them already.
+double interpolateSizeWithCoordinates(const double* b, const double h[4], double power);
+
 // scale * h, clamped to [minSize, maxSize] (the bounds that are set).
 double scaleAndClampSize(double h, const SizeFieldOptions& options);
 
