@@ -402,9 +402,24 @@ struct EdgeGraph
   std::vector<std::int32_t> offsets;
   std::vector<VertexId> targets;
   std::vector<TetId> tetOf;
-  std::vector<std::int32_t> start, fill;
-  std::vector<VertexId> halfTarget, stamp;
-  std::vector<TetId> halfTet;
+  std::vector<std::int32_t> start, fill, vertexFill;
+  std::vector<VertexId> halfTarget, stamp, blockTarget;
+  std::vector<TetId> halfTet, blockTet;
+  std::vector<std::uint16_t> lowBits; // a half edge's smaller vertex within its block
+
+  // Rebuilt after each refinement round on a slightly larger mesh: a quarter more room than
+  // asked for, so that the next build neither copies the arrays nor faults in fresh pages.
+  template<typename T>
+  static void resizeWithRoom(std::vector<T>& v, std::size_t n)
+  {
+    if (v.capacity() < n)
+    {
+      std::vector<T> larger;
+      larger.reserve(n + n / 4);
+      v.swap(larger);
+    }
+    v.resize(n);
+  }
 
   void build(const TetMesh& mesh)
   {
@@ -420,9 +435,21 @@ struct EdgeGraph
     }
     for (std::size_t v = 0; v < nv; ++v)
       start[v + 1] += start[v];
-    halfTarget.resize(static_cast<std::size_t>(start[nv]));
-    halfTet.resize(halfTarget.size());
-    fill.assign(start.begin(), start.end() - 1);
+    resizeWithRoom(halfTarget, static_cast<std::size_t>(start[nv]));
+    resizeWithRoom(halfTet, halfTarget.size());
+    // The half edges go to their vertex's list in two steps: first to their block of
+    // kBlockVertices vertices, where the writes are a few hundred sequential streams, then
+    // within each block (a few hundred kB, in cache). Written straight to their vertex, they
+    // were random writes over the whole arrays: 3/4 of the build (fandisk at h = 0.0103,
+    // 6.6M half edges: 0.11 s of 0.15 s). The order within a list is the same: tet order.
+    constexpr int kBlockShift = 10;
+    constexpr VertexId kBlockMask = (1 << kBlockShift) - 1;
+    const std::size_t blocks = (nv >> kBlockShift) + 1;
+    auto blockStart = [&](std::size_t b) { return start[std::min(nv, b << kBlockShift)]; };
+    fill.resize(blocks);
+    for (std::size_t b = 0; b < blocks; ++b)
+      fill[b] = blockStart(b);
+    resizeWithRoom(lowBits, halfTarget.size());
     for (TetId t = 0; t < mesh.tetCapacity(); ++t)
     {
       if (mesh.isDeleted(t))
@@ -431,8 +458,26 @@ struct EdgeGraph
       {
         const VertexId a = mesh.vertex(t, e[0]), b = mesh.vertex(t, e[1]);
         const VertexId lo = std::min(a, b);
-        halfTarget[fill[lo]] = std::max(a, b);
-        halfTet[fill[lo]++] = t;
+        const std::int32_t at = fill[static_cast<std::size_t>(lo >> kBlockShift)]++;
+        halfTarget[at] = std::max(a, b);
+        halfTet[at] = t;
+        lowBits[at] = static_cast<std::uint16_t>(lo & kBlockMask);
+      }
+    }
+    for (std::size_t b = 0; b < blocks; ++b)
+    {
+      const std::int32_t first = blockStart(b), last = blockStart(b + 1);
+      blockTarget.assign(halfTarget.begin() + first, halfTarget.begin() + last);
+      blockTet.assign(halfTet.begin() + first, halfTet.begin() + last);
+      const std::size_t v0 = b << kBlockShift;
+      const std::size_t v1 = std::min(nv, v0 + (std::size_t{ 1 } << kBlockShift));
+      vertexFill.assign(start.begin() + static_cast<std::ptrdiff_t>(v0),
+        start.begin() + static_cast<std::ptrdiff_t>(v1));
+      for (std::int32_t k = 0; k < last - first; ++k)
+      {
+        const std::int32_t at = vertexFill[lowBits[static_cast<std::size_t>(first + k)]]++;
+        halfTarget[at] = blockTarget[k];
+        halfTet[at] = blockTet[k];
       }
     }
     // Unique half edges, counted per endpoint for the symmetric adjacency.
@@ -460,8 +505,8 @@ struct EdgeGraph
     offsets.assign(nv + 1, 0);
     for (std::size_t v = 0; v < nv; ++v)
       offsets[v + 1] = offsets[v] + degree[v + 1];
-    targets.resize(static_cast<std::size_t>(offsets[nv]));
-    tetOf.resize(targets.size());
+    resizeWithRoom(targets, static_cast<std::size_t>(offsets[nv]));
+    resizeWithRoom(tetOf, targets.size());
     std::vector<std::int32_t>& cursor = degree;
     cursor.assign(offsets.begin(), offsets.end() - 1);
     // Neighbours of v: first the smaller ones (filled from their own lists, in increasing
