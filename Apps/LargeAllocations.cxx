@@ -13,6 +13,12 @@
 // which delete tests without reading any header. Everything else is malloc and free, as in
 // the default operators. Not in sanitizer builds (their runtimes provide these operators).
 // The library (vtkTetMesher in ParaView, Python) keeps the host's allocator.
+//
+// The small blocks (malloc's heap) go on huge pages too: the heap grows by at least 32 MiB
+// at a time (M_TOP_PAD) and every growth is advised MADV_HUGEPAGE, as glibc's own
+// glibc.malloc.hugetlb=1 does. The meshes' many small vectors (grids, per-vertex lists,
+// workspaces) faulted in their 4 KiB pages one by one: cube.vtp at h = 0.0711, a 0.11 s run,
+// took 2.8k faults, torus.vtp at h = 0.0638 4.2k; with the heap on huge pages 0.3-0.5k.
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -29,7 +35,9 @@
 #endif
 
 #if defined(__linux__) && !defined(TETMESHER_NO_LARGE_ALLOCATIONS)
+#include <malloc.h>
 #include <sys/mman.h>
+#include <unistd.h>
 
 namespace
 {
@@ -110,12 +118,43 @@ void releaseLarge(void* p)
   mmap(block, length, PROT_NONE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE | MAP_FIXED, -1, 0);
 }
 
+// malloc's heap: grown in steps of at least kHeapStep, and advised onto huge pages whenever
+// the next small allocation sees the program break moved (grown, or trimmed and grown
+// again: the whole heap is advised each time, which also covers a regrown part). Any thread
+// may see it first; the advice is idempotent, so a race only advises twice.
+constexpr std::size_t kHeapStep = std::size_t(32) << 20;
+constexpr std::uintptr_t kPage = 4096;
+std::atomic<std::uintptr_t> heapSeenEnd{ 0 };
+
+std::uintptr_t heapStart()
+{
+  static const std::uintptr_t start = []
+  {
+    mallopt(M_TOP_PAD, static_cast<int>(kHeapStep));
+    return (reinterpret_cast<std::uintptr_t>(sbrk(0)) + kPage - 1) & ~(kPage - 1);
+  }();
+  return start;
+}
+
+void adviseHeapGrowth()
+{
+  const std::uintptr_t end = reinterpret_cast<std::uintptr_t>(sbrk(0));
+  if (end == heapSeenEnd.load(std::memory_order_relaxed))
+    return;
+  heapSeenEnd.store(end, std::memory_order_relaxed);
+  if (end > heapStart() && end != static_cast<std::uintptr_t>(-1))
+    madvise(reinterpret_cast<void*>(heapStart()), end - heapStart(), MADV_HUGEPAGE); // advice only
+}
+
 void* allocate(std::size_t bytes) noexcept
 {
   if (bytes >= kLargeFrom)
     if (void* p = allocateLarge(bytes))
       return p;
-  return std::malloc(bytes == 0 ? 1 : bytes);
+  heapStart(); // the growth step is set before the first heap allocation
+  void* p = std::malloc(bytes == 0 ? 1 : bytes);
+  adviseHeapGrowth();
+  return p;
 }
 
 void release(void* p) noexcept
