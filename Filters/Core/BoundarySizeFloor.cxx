@@ -75,6 +75,8 @@ BoundarySizeFloor::BoundarySizeFloor(const double* points,
     Entry entry;
   };
   std::vector<Listing> listings;
+  // Reserved, not touched (no memory until written): 40-50 cells per face on the corpus.
+  listings.reserve(64 * faces_.size());
   for (std::size_t id = 0; id < faces_.size(); ++id)
   {
     const Face& f = faces_[id];

@@ -114,12 +114,14 @@ void starOf(TetMesh& mesh, TetId t, VertexId v, std::vector<TetId>& star)
 class ProximityGrid
 {
 public:
-  ProximityGrid(double base, double ratio, const double* origin)
+  // expectedVertices: room reserved (not touched) for the vertices to come.
+  ProximityGrid(double base, double ratio, const double* origin, std::size_t expectedVertices)
     : base_(base)
     , ratio_(ratio)
   {
     for (int k = 0; k < 3; ++k)
       origin_[k] = origin[k];
+    nodes_.reserve(expectedVertices);
   }
 
   void insert(VertexId v, const double* p, double h)
@@ -879,7 +881,10 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     minH = std::min({ minH, h[v], wanted[v] });
   auto interpolationSize = [&](VertexId v) { return v < initialCount ? wanted[v] : h[v]; };
   const bool checkProximity = options.minPointDistance > 0;
-  ProximityGrid grid(minH, std::max(options.minPointDistance, 1e-3), lo);
+  ProximityGrid grid(minH,
+    std::max(options.minPointDistance, 1e-3),
+    lo,
+    static_cast<std::size_t>(initialCount + std::min(result.estimatedPoints, 3.0e7)));
   if (checkProximity)
     for (VertexId v = 0; v < initialCount; ++v)
       if (vertexTet[v] >= 0)
@@ -1089,6 +1094,10 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       VertexId corner[4];
     };
     std::vector<LatticePoint> points;
+    // Room for twice the estimated mesh (the prefill finds more positions than go in: those
+    // next to the boundary are refused): reserved, not touched, so it costs no memory, where
+    // growing by doubling wrote about twice the final size into fresh pages.
+    points.reserve(static_cast<std::size_t>(std::min(2.0 * result.estimatedPoints, 1.0e7)) + 1024);
     const double jitter = std::clamp(options.latticeJitter, 0.0, 0.5);
     EpochHashTable<std::uint64_t, std::uint8_t, MixHash64> taken; // lattice keys used
     // Work bounds. The key holds 19 bits per index, so a level whose indices would go beyond

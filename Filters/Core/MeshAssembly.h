@@ -45,4 +45,8 @@ std::vector<std::int32_t> findTriangleFaces(const std::vector<std::int32_t>& tet
   const std::int32_t* triangles,
   std::int32_t triangleCount);
 
+// The same from tetFaceTriangles' answer: the first face 4*t+f found on each triangle.
+std::vector<std::int32_t> firstFaceOfTriangles(const std::vector<std::int32_t>& faceTriangle,
+  std::int32_t triangleCount);
+
 } // namespace tetmesher

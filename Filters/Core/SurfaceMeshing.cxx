@@ -178,8 +178,10 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
   }
   // Every tet face lying on an input triangle (both sides of an interface triangle).
   out.inputFaceIds.assign(4 * tetCount, -1);
-  const std::vector<std::int32_t> faceTriangle =
-    tetFaceTriangles(result.tets, input.triangles, input.triangleCount);
+  // The volume mesher found them already, unless the boundary mesh is the result.
+  if (result.tetFaceTriangle.size() != result.tets.size())
+    result.tetFaceTriangle = tetFaceTriangles(result.tets, input.triangles, input.triangleCount);
+  const std::vector<std::int32_t>& faceTriangle = result.tetFaceTriangle;
   for (std::size_t t = 0; t < tetCount; ++t)
   {
     for (int f = 0; f < 4; ++f)
@@ -189,6 +191,7 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
         out.inputFaceIds[4 * t + kVtkFromCore[f]] = input.cellOfTriangle[tri];
     }
   }
+  std::vector<std::int32_t>().swap(result.tetFaceTriangle); // used up
   lap("output conversion");
 
   std::string qualityError;

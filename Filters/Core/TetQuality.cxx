@@ -181,20 +181,26 @@ TetShape measureTetForOptimization(const double* a,
   return finish(s, inradius * inverseSum / 4.0, longest);
 }
 
-QualitySummary summarizeQuality(const std::vector<TetShape>& shapes)
+namespace
+{
+// The summary of `count` tets, shape(n) giving tet n's TetShape (only Q and the dihedral
+// angles are read).
+template<typename Shape>
+QualitySummary summarizeOf(std::size_t count, const Shape& shape)
 {
   QualitySummary summary;
-  summary.count = static_cast<std::int64_t>(shapes.size());
-  if (shapes.empty())
+  summary.count = static_cast<std::int64_t>(count);
+  if (count == 0)
     return summary;
   std::vector<double> q;
-  q.reserve(shapes.size());
+  q.reserve(count);
   double sum = 0.0;
   std::int64_t below01 = 0, below03 = 0;
   summary.minDihedral = 180.0;
   summary.maxDihedral = 0.0;
-  for (const TetShape& s : shapes)
+  for (std::size_t n = 0; n < count; ++n)
   {
+    const TetShape s = shape(n);
     q.push_back(s.quality);
     sum += s.quality;
     below01 += s.quality < 0.1;
@@ -211,6 +217,12 @@ QualitySummary summarizeQuality(const std::vector<TetShape>& shapes)
   summary.shareBelow01 = static_cast<double>(below01) / static_cast<double>(q.size());
   summary.shareBelow03 = static_cast<double>(below03) / static_cast<double>(q.size());
   return summary;
+}
+} // namespace
+
+QualitySummary summarizeQuality(const std::vector<TetShape>& shapes)
+{
+  return summarizeOf(shapes.size(), [&](std::size_t n) { return shapes[n]; });
 }
 
 namespace
@@ -280,13 +292,23 @@ bool measureMesh(const TetMeshView& mesh, int binCount, MeshQuality& result, std
   result.quality.assign(count, nan);
   result.minDihedral.assign(count, nan);
   result.maxDihedral.assign(count, nan);
-  std::vector<TetShape> shapes;
-  shapes.reserve(count);
+  // The tet cells, listed only when some cell is not one (vtkTetQuality on mixed grids): the
+  // summary and histogram read the arrays just filled rather than a copy of every shape.
+  std::vector<std::size_t> tetCells;
+  bool mixed = false;
   for (std::size_t c = 0; c < count; ++c)
   {
     const std::int64_t* ids = mesh.cells + 4 * c;
     if (ids[0] < 0)
+    {
+      if (!mixed)
+        for (std::size_t d = 0; d < c; ++d)
+          tetCells.push_back(d); // every cell before the first other one is a tet
+      mixed = true;
       continue;
+    }
+    if (mixed)
+      tetCells.push_back(c);
     const double* x[4];
     double h[4] = { 1, 1, 1, 1 };
     for (int i = 0; i < 4; ++i)
@@ -300,9 +322,9 @@ bool measureMesh(const TetMeshView& mesh, int binCount, MeshQuality& result, std
     result.quality[c] = shape.quality;
     result.minDihedral[c] = shape.minDihedral;
     result.maxDihedral[c] = shape.maxDihedral;
-    shapes.push_back(shape);
   }
-  if (shapes.empty())
+  const std::size_t tetCount = mixed ? tetCells.size() : count;
+  if (tetCount == 0)
   {
     std::ostringstream message;
     message << "the input has no tetrahedra (" << mesh.cellCount
@@ -310,8 +332,18 @@ bool measureMesh(const TetMeshView& mesh, int binCount, MeshQuality& result, std
     error = message.str();
     return false;
   }
-  result.summary = summarizeQuality(shapes);
-  result.histogram = qualityHistogram(shapes, binCount);
+  auto cell = [&](std::size_t n) { return mixed ? tetCells[n] : n; };
+  result.summary = summarizeOf(tetCount,
+    [&](std::size_t n)
+    {
+      TetShape s;
+      s.quality = result.quality[cell(n)];
+      s.minDihedral = result.minDihedral[cell(n)];
+      s.maxDihedral = result.maxDihedral[cell(n)];
+      return s;
+    });
+  result.histogram =
+    histogramOf(tetCount, binCount, [&](std::size_t n) { return result.quality[cell(n)]; });
   return true;
 }
 

@@ -193,7 +193,8 @@ VolumeMeshResult meshVolume(const double* points,
     }
     result.vertexSize = std::move(size);
   }
-  result.boundaryFaceTet = findTriangleFaces(result.tets, triangles, triangleCount);
+  result.tetFaceTriangle = tetFaceTriangles(result.tets, triangles, triangleCount);
+  result.boundaryFaceTet = firstFaceOfTriangles(result.tetFaceTriangle, triangleCount);
   lap("extraction and boundary faces");
   result.boundaryStats = std::move(boundary);
   result.ok = true;

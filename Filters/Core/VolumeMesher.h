@@ -56,6 +56,9 @@ struct VolumeMeshResult
   std::vector<std::int32_t> regionIds;       // per tet
   std::vector<double> vertexSize;            // h used at each vertex (empty if never computed)
   std::vector<std::int32_t> boundaryFaceTet; // per input triangle: 4*t+f of an equal tet face
+  // Per tet face 4*t+f: the input triangle it lies on, or -1 (tetFaceTriangles); empty when
+  // the boundary mesh is the result.
+  std::vector<std::int32_t> tetFaceTriangle;
   std::vector<std::int32_t> tetsBeforeOptimization; // for the before/after histogram
   int steinerPoints = 0;                            // recovery points
   int interiorPoints = 0;                           // refinement points
