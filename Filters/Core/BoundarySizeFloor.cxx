@@ -135,9 +135,13 @@ BoundarySizeFloor::BoundarySizeFloor(const double* points,
   std::int32_t cellCount = 0;
   for (std::size_t n = 0; n < listings.size(); ++n)
   {
-    if (cellIndex_.insert(listings[n].key, cellCount))
-      ++cellCount;
-    cellOfListing[n] = *cellIndex_.find(listings[n].key);
+    if (const std::int32_t* known = cellIndex_.find(listings[n].key))
+      cellOfListing[n] = *known;
+    else
+    {
+      cellIndex_.insert(listings[n].key, cellCount);
+      cellOfListing[n] = cellCount++;
+    }
   }
   cellStart_.assign(static_cast<std::size_t>(cellCount) + 1, 0);
   for (const std::int32_t c : cellOfListing)
@@ -145,10 +149,9 @@ BoundarySizeFloor::BoundarySizeFloor(const double* points,
   for (std::size_t c = 0; c < static_cast<std::size_t>(cellCount); ++c)
     cellStart_[c + 1] += cellStart_[c];
   entries_.resize(listings.size());
-  std::vector<std::int32_t> fill(cellStart_.begin(), cellStart_.end() - 1);
+  std::vector<std::size_t> fill(cellStart_.begin(), cellStart_.end() - 1);
   for (std::size_t n = 0; n < listings.size(); ++n)
-    entries_[static_cast<std::size_t>(fill[static_cast<std::size_t>(cellOfListing[n])]++)] =
-      listings[n].entry;
+    entries_[fill[static_cast<std::size_t>(cellOfListing[n])]++] = listings[n].entry;
   for (std::size_t c = 0; c < static_cast<std::size_t>(cellCount); ++c)
     std::sort(entries_.begin() + cellStart_[c],
       entries_.begin() + cellStart_[c + 1],
@@ -169,10 +172,8 @@ double BoundarySizeFloor::at(const double* p, double atLeast) const
   const std::int32_t* cell = cellIndex_.find(key(c[0], c[1], c[2]));
   if (!cell)
     return best;
-  const std::size_t end = static_cast<std::size_t>(cellStart_[static_cast<std::size_t>(*cell) + 1]);
-  for (std::size_t n = static_cast<std::size_t>(cellStart_[static_cast<std::size_t>(*cell)]);
-       n < end;
-       ++n)
+  const std::size_t end = cellStart_[static_cast<std::size_t>(*cell) + 1];
+  for (std::size_t n = cellStart_[static_cast<std::size_t>(*cell)]; n < end; ++n)
   {
     const Entry& e = entries_[n];
     if (!(e.bound > best))

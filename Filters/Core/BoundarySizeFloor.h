@@ -69,7 +69,7 @@ private:
     std::int32_t face;
   };
   EpochHashTable<std::uint64_t, std::int32_t, MixHash64> cellIndex_;
-  std::vector<std::int32_t> cellStart_;
+  std::vector<std::size_t> cellStart_;
   std::vector<Entry> entries_;
   std::vector<std::int32_t> large_; // faces over kMaxCellsPerFace cells, read by every query
 };

@@ -411,6 +411,7 @@ struct EdgeGraph
 
   // Rebuilt after each refinement round on a slightly larger mesh: a quarter more room than
   // asked for, so that the next build neither copies the arrays nor faults in fresh pages.
+  // The contents are not kept (every build overwrites them).
   template<typename T>
   static void resizeWithRoom(std::vector<T>& v, std::size_t n)
   {
@@ -439,8 +440,8 @@ struct EdgeGraph
       start[v + 1] += start[v];
     resizeWithRoom(halfTarget, static_cast<std::size_t>(start[nv]));
     resizeWithRoom(halfTet, halfTarget.size());
-    // The half edges go to their vertex's list in two steps: first to their block of
-    // kBlockVertices vertices, where the writes are a few hundred sequential streams, then
+    // The half edges go to their vertex's list in two steps: first to their block of 1024
+    // vertices, where the writes are a few hundred sequential streams, then
     // within each block (a few hundred kB, in cache). Written straight to their vertex, they
     // were random writes over the whole arrays: 3/4 of the build (fandisk at h = 0.0103,
     // 6.6M half edges: 0.11 s of 0.15 s). The order within a list is the same: tet order.
@@ -884,7 +885,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   ProximityGrid grid(minH,
     std::max(options.minPointDistance, 1e-3),
     lo,
-    static_cast<std::size_t>(initialCount + std::min(result.estimatedPoints, 3.0e7)));
+    static_cast<std::size_t>(initialCount + std::min(result.estimatedPoints, 1.0e7)));
   if (checkProximity)
     for (VertexId v = 0; v < initialCount; ++v)
       if (vertexTet[v] >= 0)
@@ -1158,9 +1159,9 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
         volume6 > 1e-6 * (scale + extent) * extent * extent;
       // The barycentric coordinates are affine in the lattice indices: those of the box's
       // first position and their steps along i, j and k, per level and sub-lattice, give
-      // every row's ends with a few multiplications (two barycentric evaluations per row
-      // were 2/3 of the candidates' time on torus.vtp at h = 0.0638: 214k rows for 12k
-      // points). Rounding moves them by far less than the tolerance below.
+      // every row's ends with a few multiplications instead of two barycentric evaluations
+      // (torus.vtp at h = 0.0638 scans 214k rows for 12k points: candidates 37 -> 34 ms).
+      // Rounding moves them by far less than the tolerance below (pruneRows: well shaped).
       struct RowCoordinates
       {
         std::int64_t i0, j0, k0;
