@@ -822,8 +822,17 @@ DelaunayResult buildDelaunay(TetMesh& mesh, const DelaunayOptions& options)
   // Reserve for the expected ~6.8 tets per point (uniform random points) so the arrays never
   // reallocate (and never transiently double the memory) during insertion.
   const std::size_t expectedTets = static_cast<std::size_t>(n) * 7 + 64;
-  mesh.coords.reserve(3 * (static_cast<std::size_t>(n) + 8));
-  adviseHugePages(mesh.coords);
+  if (mesh.coords.capacity() < 3 * (static_cast<std::size_t>(n) + 8))
+  {
+    // Room for the 8 box corners: the points move to storage advised onto huge pages before
+    // they are copied (reserve would copy them into fresh 4 KiB pages first: 6k page faults
+    // for 1M points).
+    std::vector<double> grown;
+    grown.reserve(3 * (static_cast<std::size_t>(n) + 8));
+    adviseHugePages(grown);
+    grown.assign(mesh.coords.begin(), mesh.coords.end());
+    mesh.coords.swap(grown);
+  }
   mesh.tets.reserve(4 * expectedTets);
   mesh.neighbors.reserve(4 * expectedTets);
   mesh.flags.reserve(expectedTets);

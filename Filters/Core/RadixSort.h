@@ -1,6 +1,8 @@
 // Least-significant-digit radix sort of records by an unsigned 64-bit key.
 #pragma once
 
+#include "HugePages.h"
+
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -18,6 +20,8 @@ void radixSortByKey(std::vector<T>& items, std::vector<T>& scratch, KeyOf keyOf,
 {
   constexpr int kDigitBits = 12;
   constexpr std::size_t kBuckets = std::size_t(1) << kDigitBits;
+  scratch.reserve(items.size());
+  adviseHugePages(scratch); // first written here, front to back
   scratch.resize(items.size());
   std::vector<std::size_t> count(kBuckets);
   for (int shift = 0; shift < keyBits; shift += kDigitBits)
