@@ -18,7 +18,7 @@
 // at a time (M_TOP_PAD) and every growth is advised MADV_HUGEPAGE, as glibc's own
 // glibc.malloc.hugetlb=1 does. The meshes' many small vectors (grids, per-vertex lists,
 // workspaces) faulted in their 4 KiB pages one by one: cube.vtp at h = 0.0711, a 0.11 s run,
-// took 2.8k faults, torus.vtp at h = 0.0638 4.2k; with the heap on huge pages 0.3-0.5k.
+// took 2.8k faults, torus.vtp at h = 0.0638 4.2k; with the heap on huge pages 0.3-0.7k.
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
