@@ -132,13 +132,6 @@ std::vector<std::int32_t> tetFaceTriangles(const std::vector<std::int32_t>& tets
   return faceTriangle;
 }
 
-std::vector<std::int32_t> findTriangleFaces(const std::vector<std::int32_t>& tets,
-  const std::int32_t* triangles,
-  std::int32_t triangleCount)
-{
-  return firstFaceOfTriangles(tetFaceTriangles(tets, triangles, triangleCount), triangleCount);
-}
-
 std::vector<std::int32_t> firstFaceOfTriangles(const std::vector<std::int32_t>& faceTriangle,
   std::int32_t triangleCount)
 {

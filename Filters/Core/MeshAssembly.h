@@ -40,12 +40,7 @@ std::vector<std::int32_t> tetFaceTriangles(const std::vector<std::int32_t>& tets
   std::int32_t triangleCount);
 
 // For each input triangle, 4*t+f of a tet face with the same three vertices (face f opposite
-// vertex f of tet t in `tets`), or -1 if no tet has it.
-std::vector<std::int32_t> findTriangleFaces(const std::vector<std::int32_t>& tets,
-  const std::int32_t* triangles,
-  std::int32_t triangleCount);
-
-// The same from tetFaceTriangles' answer: the first face 4*t+f found on each triangle.
+// vertex f of tet t), or -1 if no tet has it, from tetFaceTriangles' answer: the first found.
 std::vector<std::int32_t> firstFaceOfTriangles(const std::vector<std::int32_t>& faceTriangle,
   std::int32_t triangleCount);
 

@@ -241,11 +241,6 @@ std::vector<std::int64_t> histogramOf(std::size_t count, int binCount, const Qua
 }
 } // namespace
 
-std::vector<std::int64_t> qualityHistogram(const std::vector<TetShape>& shapes, int binCount)
-{
-  return histogramOf(shapes.size(), binCount, [&](std::size_t n) { return shapes[n].quality; });
-}
-
 std::vector<std::int64_t> qualityHistogram(const std::vector<double>& quality, int binCount)
 {
   return histogramOf(quality.size(), binCount, [&](std::size_t n) { return quality[n]; });

@@ -81,9 +81,7 @@ struct QualitySummary
 
 QualitySummary summarizeQuality(const std::vector<TetShape>& shapes);
 
-// Histogram of Q over [0, 1] in `binCount` equal bins; Q = 1 falls in the last bin.
-std::vector<std::int64_t> qualityHistogram(const std::vector<TetShape>& shapes, int binCount);
-// The same over Q values.
+// Histogram of Q values over [0, 1] in `binCount` equal bins; Q = 1 falls in the last bin.
 std::vector<std::int64_t> qualityHistogram(const std::vector<double>& quality, int binCount);
 
 // The summary as the field data the filters store and the CLI prints, in their order.
