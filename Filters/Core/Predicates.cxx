@@ -153,7 +153,23 @@ int sign(Exp e)
 // Nearly co-spherical input (points on a sphere) fails the double filter constantly and is
 // decided here at a fraction of the cost of expansion arithmetic. Returns 0 when uncertain.
 // Where long double is no wider than double, the stage is skipped.
-constexpr bool kHasExtendedStage = std::numeric_limits<long double>::digits >= 64;
+// The compiler's word is not enough: emulators run x87 code in double precision (valgrind
+// does), where the 2^-64 bound would be wrong and the stage would decide signs falsely (a
+// Delaunay build under valgrind failed with a vertex "that could not be inserted"). So the
+// 64-bit significand is checked once at run time: 1 + 2^-63 must not round to 1.
+bool extendedPrecisionHolds()
+{
+  static const bool holds = []
+  {
+    volatile long double one = 1.0L;
+    volatile long double tiny = 1.0L / 9223372036854775808.0L; // 2^-63
+    const long double sum = one + tiny;
+    return sum - one == tiny;
+  }();
+  return holds;
+}
+const bool kHasExtendedStage =
+  std::numeric_limits<long double>::digits >= 64 && extendedPrecisionHolds();
 constexpr long double kEpsilonExtended = 1.0L / 18446744073709551616.0L; // 2^-64
 constexpr long double kOrient3dExtendedBound = (7.0L + 56.0L * kEpsilonExtended) * kEpsilonExtended;
 constexpr long double kInsphereExtendedBound =
