@@ -27,14 +27,15 @@ bool findMultiFaceRemoval(const Context& ctx, TetId t, int f, LocalMove& out)
   const VertexId a = ctx.mesh.vertex(t, f);
   const VertexId b = ctx.mesh.vertex(faceTet(n0), faceIndex(n0));
   const int* fv = kFaceVertices[f];
-  std::vector<Sandwiched> faces = {
+  // Scratch reused between calls (this runs for every face of every bad tet).
+  thread_local std::vector<Sandwiched> faces;
+  thread_local std::vector<TetVertices> newTets;
+  thread_local std::vector<std::pair<std::size_t, int>> edges; // boundary edge: face, edge index
+  faces.assign(1,
     { { ctx.mesh.vertex(t, fv[0]), ctx.mesh.vertex(t, fv[1]), ctx.mesh.vertex(t, fv[2]) },
       t,
-      faceTet(n0) }
-  };
+      faceTet(n0) });
   bool found = false;
-  std::vector<TetVertices> newTets;
-  std::vector<std::pair<std::size_t, int>> edges; // boundary edge: face index, edge index
   for (int iter = 0; iter < ctx.options.maxMultiFace; ++iter)
   {
     // Boundary edges of the face set (directed edges whose reverse is not in the set).
