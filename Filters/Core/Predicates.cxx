@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <sstream>
 #include <vector>
@@ -239,60 +241,65 @@ int insphereExtended(const double* a,
 // below 2^bits, then every intermediate value of the determinant is an integer below 2^63
 // and a 64-bit integer evaluation is exact, zero included. Bits: insphere needs
 // 72 * 2^(5 bits) < 2^63 (bits = 11; 24 with 128-bit integers); orient3d needs
-// 6 * 2^(3 bits) < 2^63 (bits = 20).
-bool scaledIntegerDifferences(const double* const* points,
+// 6 * 2^(3 bits) < 2^63 (bits = 20). The scaling is by a positive power of two, which
+// leaves the determinants' signs as they are.
+constexpr int kMaxLatticeBits = 24;
+
+// The differences points[i] - origin as integers, scaled by 2^-(the lowest bit set in any
+// of them): returns the bits the largest then needs (every |out| < 2^bits; 0 when all are
+// zero), or -1 when a difference is not exact in double. Past kMaxLatticeBits, out is not
+// filled. The bit positions come from each double's exponent and significand, in one pass:
+// the lattice's differences took 4% of a refinement run (fandisk at h = 0.0103) through
+// frexp and ldexp, twice per in-sphere test (11 bits, then 24).
+int integerDifferences(const double* const* points,
   int count,
   const double* origin,
-  int bits,
   long long (*out)[3])
 {
   double diff[5][3];
-  double maxAbs = 0;
+  int lowest = std::numeric_limits<int>::max(), highest = std::numeric_limits<int>::min();
   for (int i = 0; i < count; ++i)
     for (int k = 0; k < 3; ++k)
     {
       double x, y;
       twoDiff(points[i][k], origin[k], x, y);
-      if (y != 0.0)
-        return false;
+      if (y != 0.0 || !std::isfinite(x)) // (a NaN tail fails the first test too)
+        return -1;
       diff[i][k] = x;
-      if (!(std::fabs(x) <= maxAbs)) // written so that a NaN propagates and fails below
-        maxAbs = std::fabs(x);
+      if (x == 0.0)
+        continue;
+      std::uint64_t bits;
+      std::memcpy(&bits, &x, sizeof bits);
+      int exponent = static_cast<int>((bits >> 52) & 0x7FF);
+      std::uint64_t significand = bits & ((std::uint64_t(1) << 52) - 1);
+      if (exponent != 0)
+        significand |= std::uint64_t(1) << 52;
+      else
+        exponent = 1; // subnormal
+      // |x| = significand * 2^(exponent - 1075): its lowest and highest set bits.
+      const int low = exponent - 1075 + __builtin_ctzll(significand);
+      const int high = exponent - 1075 + 63 - __builtin_clzll(significand);
+      lowest = std::min(lowest, low);
+      highest = std::max(highest, high);
     }
-  // |x| < 2^bits <= 2^24 here, so the int64 round trip is an exact integrality test
-  // (cheaper than std::trunc, which is a library call without SSE4.1).
-  auto isInteger = [](double x) { return x == static_cast<double>(static_cast<long long>(x)); };
-  const double limit = std::ldexp(1.0, bits);
-  if (maxAbs < limit)
+  if (lowest == std::numeric_limits<int>::max())
   {
-    // Common case (integer coordinates, e.g. grids): no scaling needed.
-    bool integral = true;
-    for (int i = 0; i < count && integral; ++i)
+    for (int i = 0; i < count; ++i)
       for (int k = 0; k < 3; ++k)
-        integral = integral && isInteger(diff[i][k]);
-    if (integral)
-    {
-      for (int i = 0; i < count; ++i)
-        for (int k = 0; k < 3; ++k)
-          out[i][k] = static_cast<long long>(diff[i][k]);
-      return true;
-    }
+        out[i][k] = 0;
+    return 0;
   }
-  int exponent = 0;
-  std::frexp(maxAbs, &exponent); // maxAbs < 2^exponent
-  // Multiplying by a power of two is exact unless it overflows or underflows, which the
-  // round trip detects.
-  const double scale = std::ldexp(1.0, bits - exponent);
-  const double inverse = std::ldexp(1.0, exponent - bits);
+  const int needed = highest - lowest + 1;
+  // 2^-lowest must be a normal double (|lowest| <= 1022) to scale by it exactly.
+  if (needed > kMaxLatticeBits || lowest < -1022 || lowest > 1022)
+    return needed;
+  std::uint64_t scaleBits = static_cast<std::uint64_t>(1023 - lowest) << 52;
+  double scale;
+  std::memcpy(&scale, &scaleBits, sizeof scale);
   for (int i = 0; i < count; ++i)
     for (int k = 0; k < 3; ++k)
-    {
-      const double s = diff[i][k] * scale;
-      if (!(std::fabs(s) < limit) || !isInteger(s) || s * inverse != diff[i][k])
-        return false;
-      out[i][k] = static_cast<long long>(s);
-    }
-  return true;
+      out[i][k] = static_cast<long long>(diff[i][k] * scale);
+  return needed;
 }
 
 // 0 when not applicable, else 1 + (sign + 1): decodes with decodeLattice.
@@ -300,7 +307,8 @@ int orient3dLattice(const double* a, const double* b, const double* c, const dou
 {
   const double* const pts[3] = { a, b, c };
   long long m[3][3];
-  if (!scaledIntegerDifferences(pts, 3, d, 20, m))
+  const int bits = integerDifferences(pts, 3, d, m);
+  if (bits < 0 || bits > 20)
     return 0;
   const long long det = m[0][2] * (m[1][0] * m[2][1] - m[2][0] * m[1][1]) +
     m[1][2] * (m[2][0] * m[0][1] - m[0][0] * m[2][1]) +
@@ -339,16 +347,234 @@ int insphereLattice(const double* a,
 {
   const double* const pts[4] = { a, b, c, d };
   long long m[4][3];
-  if (scaledIntegerDifferences(pts, 4, e, 11, m))
+  const int bits = integerDifferences(pts, 4, e, m);
+  if (bits < 0)
+    return 0;
+  if (bits <= 11)
     return insphereOfIntegers<long long>(m);
 #ifdef __SIZEOF_INT128__
   // 128 bits hold 72 * 2^(5 * 24): lattices with finer steps relative to their extent (the
   // refinement's snapped lattice: steps of a/4096 and more) stay out of the expansions.
-  if (scaledIntegerDifferences(pts, 4, e, 24, m))
+  if (bits <= kMaxLatticeBits)
     return insphereOfIntegers<__int128>(m);
 #endif
   return 0;
 }
+
+#ifdef __SIZEOF_INT128__
+// Fourth stage for insphere: the coordinates themselves as integers. Any five points whose
+// 15 coordinates span at most 61 bits (from the highest bit of the largest to the lowest
+// bit set in any) are, after scaling by a power of two, integers below 2^61: their
+// differences are exact int64 values below 2^62, and the determinant an integer below 2^317,
+// evaluated exactly in 5 limbs of 64 bits. Points on a sphere computed in floating point
+// (icosphere.vtp, uv_sphere.vtp: coordinates in [-1, 1]) are nearly co-spherical beyond the
+// extended stage's reach, and the expansions took ~25k instructions per test: the surface
+// Delaunay of icosphere.vtp, 10k such tests, was 16% of a refinement run at h/2.
+constexpr int kWideCoordinateBits = 61;
+
+// Signed integers of N 64-bit limbs, two's complement, least significant limb first.
+template<int N>
+struct Wide
+{
+  std::uint64_t limb[N];
+};
+
+template<int N>
+bool isNegative(const Wide<N>& a)
+{
+  return (a.limb[N - 1] >> 63) != 0;
+}
+
+template<int N>
+Wide<N> negated(Wide<N> a)
+{
+  std::uint64_t carry = 1;
+  for (int i = 0; i < N; ++i)
+  {
+    const std::uint64_t x = ~a.limb[i];
+    a.limb[i] = x + carry;
+    carry = a.limb[i] < x ? 1 : 0;
+  }
+  return a;
+}
+
+// a + b, or a - b; the bounds above keep every result far from overflow.
+template<int N>
+Wide<N> added(const Wide<N>& a, const Wide<N>& b)
+{
+  Wide<N> r;
+  std::uint64_t carry = 0;
+  for (int i = 0; i < N; ++i)
+  {
+    const unsigned __int128 t = static_cast<unsigned __int128>(a.limb[i]) + b.limb[i] + carry;
+    r.limb[i] = static_cast<std::uint64_t>(t);
+    carry = static_cast<std::uint64_t>(t >> 64);
+  }
+  return r;
+}
+template<int N>
+Wide<N> subtracted(const Wide<N>& a, const Wide<N>& b)
+{
+  return added(a, negated(b));
+}
+
+// a (M limbs) sign-extended to N limbs.
+template<int N, int M>
+Wide<N> widened(const Wide<M>& a)
+{
+  Wide<N> r;
+  const std::uint64_t fill = isNegative(a) ? ~std::uint64_t(0) : 0;
+  for (int i = 0; i < N; ++i)
+    r.limb[i] = i < M ? a.limb[i] : fill;
+  return r;
+}
+
+// The product of a (M limbs) and b (K limbs), M + K limbs: magnitudes by schoolbook.
+template<int M, int K>
+Wide<M + K> multiplied(const Wide<M>& a, const Wide<K>& b)
+{
+  const bool negative = isNegative(a) != isNegative(b);
+  const Wide<M> x = isNegative(a) ? negated(a) : a;
+  const Wide<K> y = isNegative(b) ? negated(b) : b;
+  Wide<M + K> r;
+  for (int i = 0; i < M + K; ++i)
+    r.limb[i] = 0;
+  for (int i = 0; i < M; ++i)
+  {
+    std::uint64_t carry = 0;
+    for (int j = 0; j < K; ++j)
+    {
+      const unsigned __int128 t =
+        static_cast<unsigned __int128>(x.limb[i]) * y.limb[j] + r.limb[i + j] + carry;
+      r.limb[i + j] = static_cast<std::uint64_t>(t);
+      carry = static_cast<std::uint64_t>(t >> 64);
+    }
+    r.limb[i + K] = carry;
+  }
+  return negative ? negated(r) : r;
+}
+
+Wide<1> wide(long long x)
+{
+  return { { static_cast<std::uint64_t>(x) } };
+}
+
+template<int N>
+int signOfWide(const Wide<N>& a)
+{
+  if (isNegative(a))
+    return -1;
+  for (int i = 0; i < N; ++i)
+    if (a.limb[i] != 0)
+      return 1;
+  return 0;
+}
+
+// The points' coordinates scaled by one power of two to integers (|out| < 2^61); false when
+// they span more than kWideCoordinateBits bits or are not finite.
+bool scaledCoordinates(const double* const* points, int count, long long (*out)[3])
+{
+  int lowest = std::numeric_limits<int>::max(), highest = std::numeric_limits<int>::min();
+  for (int i = 0; i < count; ++i)
+    for (int k = 0; k < 3; ++k)
+    {
+      const double x = points[i][k];
+      if (!std::isfinite(x))
+        return false;
+      if (x == 0.0)
+        continue;
+      std::uint64_t bits;
+      std::memcpy(&bits, &x, sizeof bits);
+      int exponent = static_cast<int>((bits >> 52) & 0x7FF);
+      std::uint64_t significand = bits & ((std::uint64_t(1) << 52) - 1);
+      if (exponent != 0)
+        significand |= std::uint64_t(1) << 52;
+      else
+        exponent = 1; // subnormal
+      lowest = std::min(lowest, exponent - 1075 + __builtin_ctzll(significand));
+      highest = std::max(highest, exponent - 1075 + 63 - __builtin_clzll(significand));
+    }
+  if (lowest == std::numeric_limits<int>::max())
+    lowest = highest = 0; // all zero
+  if (highest - lowest + 1 > kWideCoordinateBits || lowest < -1022 || lowest > 1022)
+    return false;
+  std::uint64_t scaleBits = static_cast<std::uint64_t>(1023 - lowest) << 52;
+  double scale;
+  std::memcpy(&scale, &scaleBits, sizeof scale);
+  for (int i = 0; i < count; ++i)
+    for (int k = 0; k < 3; ++k)
+      out[i][k] = static_cast<long long>(points[i][k] * scale); // exact: an integer < 2^61
+  return true;
+}
+
+// 0 when not applicable, else 1 + (sign + 1), as insphereLattice.
+int insphereWide(const double* a,
+  const double* b,
+  const double* c,
+  const double* d,
+  const double* e)
+{
+  const double* const pts[5] = { a, b, c, d, e };
+  long long v[5][3];
+  if (!scaledCoordinates(pts, 5, v))
+    return 0;
+  Wide<1> x[4][3]; // rows a-e .. d-e, |.| < 2^62
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k)
+      x[i][k] = wide(v[i][k] - v[4][k]);
+  auto minor = [&x](int i, int j) // x_i y_j - x_j y_i, < 2^125
+  { return subtracted(multiplied(x[i][0], x[j][1]), multiplied(x[j][0], x[i][1])); };
+  const Wide<2> ab = minor(0, 1), bc = minor(1, 2), cd = minor(2, 3);
+  const Wide<2> da = minor(3, 0), ac = minor(0, 2), bd = minor(1, 3);
+  // The cofactors of the lift column, < 2^189, as insphereOfIntegers forms them.
+  const Wide<3> abc =
+    added(subtracted(multiplied(x[0][2], bc), multiplied(x[1][2], ac)), multiplied(x[2][2], ab));
+  const Wide<3> bcd =
+    added(subtracted(multiplied(x[1][2], cd), multiplied(x[2][2], bd)), multiplied(x[3][2], bc));
+  const Wide<3> cda =
+    added(added(multiplied(x[2][2], da), multiplied(x[3][2], ac)), multiplied(x[0][2], cd));
+  const Wide<3> dab =
+    added(added(multiplied(x[3][2], ab), multiplied(x[0][2], bd)), multiplied(x[1][2], da));
+  Wide<2> lift[4]; // < 2^126
+  for (int i = 0; i < 4; ++i)
+    lift[i] = added(added(multiplied(x[i][0], x[i][0]), multiplied(x[i][1], x[i][1])),
+      multiplied(x[i][2], x[i][2]));
+  const Wide<5> det = added(subtracted(multiplied(lift[3], abc), multiplied(lift[2], dab)),
+    subtracted(multiplied(lift[1], cda), multiplied(lift[0], bcd)));
+  return 2 + signOfWide(det);
+}
+
+// The same for orient3d: differences below 2^62, minors below 2^125, the determinant below
+// 2^189 in 3 limbs. CAD surfaces' nearly coplanar points whose differences are not exact
+// in double otherwise go to the expansions.
+int orient3dWide(const double* a, const double* b, const double* c, const double* d)
+{
+  const double* const pts[4] = { a, b, c, d };
+  long long v[4][3];
+  if (!scaledCoordinates(pts, 4, v))
+    return 0;
+  Wide<1> x[3][3]; // rows a-d, b-d, c-d
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k)
+      x[i][k] = wide(v[i][k] - v[3][k]);
+  auto minor = [&x](int i, int j) // x_i y_j - x_j y_i
+  { return subtracted(multiplied(x[i][0], x[j][1]), multiplied(x[j][0], x[i][1])); };
+  // adz*(bdx*cdy - cdx*bdy) + bdz*(cdx*ady - adx*cdy) + cdz*(adx*bdy - bdx*ady)
+  const Wide<3> det =
+    added(added(multiplied(x[0][2], minor(1, 2)), multiplied(x[1][2], minor(2, 0))),
+      multiplied(x[2][2], minor(0, 1)));
+  return 2 + signOfWide(det);
+}
+#else
+int insphereWide(const double*, const double*, const double*, const double*, const double*)
+{
+  return 0;
+}
+int orient3dWide(const double*, const double*, const double*, const double*)
+{
+  return 0;
+}
+#endif
 
 inline int decodeLattice(int code)
 {
@@ -416,6 +642,8 @@ int orient3dExact(const double* a, const double* b, const double* c, const doubl
     if (s != 0)
       return s;
   }
+  if (const int code = orient3dWide(a, b, c, d))
+    return decodeLattice(code);
   if (const int s = orient3dOfExactDifferences(a, b, c, d); s != 2)
     return s;
   Arena& ar = arena();
@@ -449,6 +677,8 @@ int insphereExact(const double* a,
     if (s != 0)
       return s;
   }
+  if (const int code = insphereWide(a, b, c, d, e))
+    return decodeLattice(code);
   Arena& ar = arena();
   ar.reset();
   const Exp aex = difference(ar, a[0], e[0]), bex = difference(ar, b[0], e[0]),

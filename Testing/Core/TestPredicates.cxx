@@ -265,6 +265,44 @@ TEST(Predicates, NearlyCosphericalPerturbedByUlps)
   }
 }
 
+// Points on the unit sphere about the origin, as tessellated spheres have them (coordinates
+// in [-1, 1], some near 0): beyond the double and extended filters, decided by the stage on
+// 61-bit integer coordinates; with a coordinate of 1e-30 among them the span is too wide
+// for it and the expansions decide. Also nearly coplanar points of such spheres (orient3d).
+TEST(Predicates, UnitSphereAndWideSpans)
+{
+  Random rnd;
+  auto onSphere = [&rnd]()
+  {
+    Point dir = rnd.point();
+    const double len = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    for (double& x : dir)
+      x /= len;
+    return dir;
+  };
+  for (int i = 0; i < 20000; ++i)
+  {
+    std::array<Point, 5> p;
+    for (Point& q : p)
+      q = onSphere();
+    if (i % 4 == 1)
+      p[rnd.integer(0, 4)][rnd.integer(0, 2)] = 1e-30; // span too wide for 61 bits
+    if (i % 4 == 2)
+      p[4] = p[rnd.integer(0, 3)]; // a repeated point: exactly zero
+    p[4] = rnd.nudge(p[4], 2);
+    expectInsphere(p[0], p[1], p[2], p[3], p[4]);
+    expectInsphere(p[4], p[3], p[2], p[1], p[0]);
+    // Three points on a great circle and a fourth nearly on its plane.
+    Point a = onSphere(), b = onSphere();
+    Point c = { -a[0], -a[1], -a[2] };
+    const double t = rnd.uniform(-1, 1);
+    Point d = { t * a[0] + (1 - t) * b[0], t * a[1] + (1 - t) * b[1], t * a[2] + (1 - t) * b[2] };
+    d = rnd.nudge(d, 2);
+    expectOrient3d(a, b, c, d);
+    expectOrient3d(d, c, b, a);
+  }
+}
+
 TEST(Predicates, ExactlyDegenerateIntegerInput)
 {
   Random rnd;
