@@ -366,12 +366,10 @@ int insphereLattice(const double* a,
 // 15 coordinates span at most 61 bits (from the highest bit of the largest to the lowest
 // bit set in any) are, after scaling by a power of two, integers below 2^61: their
 // differences are exact int64 values below 2^62, and the determinant an integer below 2^317,
-// evaluated exactly in 5 limbs of 64 bits. Points on a sphere computed in floating point
-// (icosphere.vtp, uv_sphere.vtp: coordinates in [-1, 1]) are nearly co-spherical beyond the
-// extended stage's reach, and the expansions took ~25k instructions per test: the surface
-// Delaunay of icosphere.vtp, 10k such tests, was 16% of a refinement run at h/2.
-constexpr int kWideCoordinateBits = 61;
-
+// evaluated exactly in 5 limbs of 64 bits; up to 125 bits, in twice the limbs. Points on a sphere
+// computed in floating point (icosphere.vtp, uv_sphere.vtp: coordinates in [-1, 1]) are nearly
+// co-spherical beyond the extended stage's reach, and the expansions took ~25k instructions per
+// test: the surface Delaunay of icosphere.vtp, 10k such tests, was 16% of a refinement run at h/2.
 // Signed integers of N 64-bit limbs, two's complement, least significant limb first.
 template<int N>
 struct Wide
@@ -454,11 +452,6 @@ Wide<M + K> multiplied(const Wide<M>& a, const Wide<K>& b)
   return negative ? negated(r) : r;
 }
 
-Wide<1> wide(long long x)
-{
-  return { { static_cast<std::uint64_t>(x) } };
-}
-
 template<int N>
 int signOfWide(const Wide<N>& a)
 {
@@ -470,41 +463,109 @@ int signOfWide(const Wide<N>& a)
   return 0;
 }
 
-// The points' coordinates scaled by one power of two to integers (|out| < 2^61); false when
-// they span more than kWideCoordinateBits bits or are not finite.
-bool scaledCoordinates(const double* const* points, int count, long long (*out)[3])
+// The points' coordinates scaled by one power of two to integers below 2^(64 L - 3), as
+// differences from the last point (below 2^(64 L - 2)) in L limbs: L = 1 when the 15
+// coordinates span at most 61 bits, 2 up to 125 (a coordinate of 1e-17 among ones near 1,
+// as cos(pi/2) gives on a UV sphere: ~106 bits). 0 when they span more or are not finite.
+int scaledDifferences(const double* const* points, int count, Wide<2> (*out)[3])
 {
   int lowest = std::numeric_limits<int>::max(), highest = std::numeric_limits<int>::min();
+  std::uint64_t significand[5][3];
+  int exponent[5][3];
   for (int i = 0; i < count; ++i)
     for (int k = 0; k < 3; ++k)
     {
       const double x = points[i][k];
       if (!std::isfinite(x))
-        return false;
-      if (x == 0.0)
-        continue;
+        return 0;
       std::uint64_t bits;
       std::memcpy(&bits, &x, sizeof bits);
-      int exponent = static_cast<int>((bits >> 52) & 0x7FF);
-      std::uint64_t significand = bits & ((std::uint64_t(1) << 52) - 1);
-      if (exponent != 0)
-        significand |= std::uint64_t(1) << 52;
+      int e = static_cast<int>((bits >> 52) & 0x7FF);
+      std::uint64_t m = bits & ((std::uint64_t(1) << 52) - 1);
+      if (e != 0)
+        m |= std::uint64_t(1) << 52;
       else
-        exponent = 1; // subnormal
-      lowest = std::min(lowest, exponent - 1075 + __builtin_ctzll(significand));
-      highest = std::max(highest, exponent - 1075 + 63 - __builtin_clzll(significand));
+        e = 1; // subnormal
+      // |x| = m * 2^(e - 1075); its lowest and highest set bits.
+      significand[i][k] = m;
+      exponent[i][k] = e - 1075;
+      if (m == 0)
+        continue;
+      lowest = std::min(lowest, e - 1075 + __builtin_ctzll(m));
+      highest = std::max(highest, e - 1075 + 63 - __builtin_clzll(m));
     }
   if (lowest == std::numeric_limits<int>::max())
     lowest = highest = 0; // all zero
-  if (highest - lowest + 1 > kWideCoordinateBits || lowest < -1022 || lowest > 1022)
-    return false;
-  std::uint64_t scaleBits = static_cast<std::uint64_t>(1023 - lowest) << 52;
-  double scale;
-  std::memcpy(&scale, &scaleBits, sizeof scale);
+  const int span = highest - lowest + 1;
+  if (span > 125)
+    return 0;
+  __int128 v[5][3];
   for (int i = 0; i < count; ++i)
     for (int k = 0; k < 3; ++k)
-      out[i][k] = static_cast<long long>(points[i][k] * scale); // exact: an integer < 2^61
-  return true;
+    {
+      // m 2^(exponent - lowest), exponent - lowest in [0, span - 1]: below 2^125.
+      const std::uint64_t m = significand[i][k];
+      const int shift = exponent[i][k] - lowest;
+      const unsigned __int128 magnitude = m == 0
+        ? 0
+        : (shift >= 0 ? static_cast<unsigned __int128>(m) << shift
+                      : static_cast<unsigned __int128>(m >> -shift));
+      v[i][k] = std::signbit(points[i][k]) ? -static_cast<__int128>(magnitude)
+                                           : static_cast<__int128>(magnitude);
+    }
+  for (int i = 0; i + 1 < count; ++i)
+    for (int k = 0; k < 3; ++k)
+    {
+      const unsigned __int128 d = static_cast<unsigned __int128>(v[i][k] - v[count - 1][k]);
+      out[i][k] = { { static_cast<std::uint64_t>(d), static_cast<std::uint64_t>(d >> 64) } };
+    }
+  return span <= 61 ? 1 : 2;
+}
+
+// The low limb of x (a Wide<2> whose value fits one limb), as Wide<1>.
+Wide<1> low(const Wide<2>& x)
+{
+  return { { x.limb[0] } };
+}
+
+// The in-sphere determinant's sign from differences of L limbs (|.| < 2^(64 L - 2)): minors
+// below 2^(128 L - 3) in 2L limbs, cofactors below 2^(192 L - 3) in 3L, lifts below
+// 2^(128 L - 2) in 2L, the determinant below 2^(320 L - 1) in 5L. As insphereOfIntegers.
+template<int L>
+int insphereOfWide(const Wide<L> (&x)[4][3])
+{
+  auto minor = [&x](int i, int j) // x_i y_j - x_j y_i
+  { return subtracted(multiplied(x[i][0], x[j][1]), multiplied(x[j][0], x[i][1])); };
+  const Wide<2 *L> ab = minor(0, 1), bc = minor(1, 2), cd = minor(2, 3);
+  const Wide<2 *L> da = minor(3, 0), ac = minor(0, 2), bd = minor(1, 3);
+  const Wide<3 * L> abc =
+    added(subtracted(multiplied(x[0][2], bc), multiplied(x[1][2], ac)), multiplied(x[2][2], ab));
+  const Wide<3 * L> bcd =
+    added(subtracted(multiplied(x[1][2], cd), multiplied(x[2][2], bd)), multiplied(x[3][2], bc));
+  const Wide<3 * L> cda =
+    added(added(multiplied(x[2][2], da), multiplied(x[3][2], ac)), multiplied(x[0][2], cd));
+  const Wide<3 * L> dab =
+    added(added(multiplied(x[3][2], ab), multiplied(x[0][2], bd)), multiplied(x[1][2], da));
+  Wide<2 * L> lift[4];
+  for (int i = 0; i < 4; ++i)
+    lift[i] = added(added(multiplied(x[i][0], x[i][0]), multiplied(x[i][1], x[i][1])),
+      multiplied(x[i][2], x[i][2]));
+  const Wide<5 * L> det = added(subtracted(multiplied(lift[3], abc), multiplied(lift[2], dab)),
+    subtracted(multiplied(lift[1], cda), multiplied(lift[0], bcd)));
+  return signOfWide(det);
+}
+
+// The orientation's sign from differences of L limbs: the determinant below 2^(192 L - 3).
+template<int L>
+int orient3dOfWide(const Wide<L> (&x)[3][3])
+{
+  auto minor = [&x](int i, int j) // x_i y_j - x_j y_i
+  { return subtracted(multiplied(x[i][0], x[j][1]), multiplied(x[j][0], x[i][1])); };
+  // adz*(bdx*cdy - cdx*bdy) + bdz*(cdx*ady - adx*cdy) + cdz*(adx*bdy - bdx*ady)
+  const Wide<3 * L> det =
+    added(added(multiplied(x[0][2], minor(1, 2)), multiplied(x[1][2], minor(2, 0))),
+      multiplied(x[2][2], minor(0, 1)));
+  return signOfWide(det);
 }
 
 // 0 when not applicable, else 1 + (sign + 1), as insphereLattice.
@@ -515,55 +576,35 @@ int insphereWide(const double* a,
   const double* e)
 {
   const double* const pts[5] = { a, b, c, d, e };
-  long long v[5][3];
-  if (!scaledCoordinates(pts, 5, v))
-    return 0;
-  Wide<1> x[4][3]; // rows a-e .. d-e, |.| < 2^62
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k)
-      x[i][k] = wide(v[i][k] - v[4][k]);
-  auto minor = [&x](int i, int j) // x_i y_j - x_j y_i, < 2^125
-  { return subtracted(multiplied(x[i][0], x[j][1]), multiplied(x[j][0], x[i][1])); };
-  const Wide<2> ab = minor(0, 1), bc = minor(1, 2), cd = minor(2, 3);
-  const Wide<2> da = minor(3, 0), ac = minor(0, 2), bd = minor(1, 3);
-  // The cofactors of the lift column, < 2^189, as insphereOfIntegers forms them.
-  const Wide<3> abc =
-    added(subtracted(multiplied(x[0][2], bc), multiplied(x[1][2], ac)), multiplied(x[2][2], ab));
-  const Wide<3> bcd =
-    added(subtracted(multiplied(x[1][2], cd), multiplied(x[2][2], bd)), multiplied(x[3][2], bc));
-  const Wide<3> cda =
-    added(added(multiplied(x[2][2], da), multiplied(x[3][2], ac)), multiplied(x[0][2], cd));
-  const Wide<3> dab =
-    added(added(multiplied(x[3][2], ab), multiplied(x[0][2], bd)), multiplied(x[1][2], da));
-  Wide<2> lift[4]; // < 2^126
-  for (int i = 0; i < 4; ++i)
-    lift[i] = added(added(multiplied(x[i][0], x[i][0]), multiplied(x[i][1], x[i][1])),
-      multiplied(x[i][2], x[i][2]));
-  const Wide<5> det = added(subtracted(multiplied(lift[3], abc), multiplied(lift[2], dab)),
-    subtracted(multiplied(lift[1], cda), multiplied(lift[0], bcd)));
-  return 2 + signOfWide(det);
+  Wide<2> x[4][3]; // rows a-e .. d-e
+  const int limbs = scaledDifferences(pts, 5, x);
+  if (limbs == 1)
+  {
+    Wide<1> y[4][3];
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k)
+        y[i][k] = low(x[i][k]);
+    return 2 + insphereOfWide(y);
+  }
+  return limbs == 2 ? 2 + insphereOfWide(x) : 0;
 }
 
-// The same for orient3d: differences below 2^62, minors below 2^125, the determinant below
-// 2^189 in 3 limbs. CAD surfaces' nearly coplanar points whose differences are not exact
-// in double otherwise go to the expansions.
+// The same for orient3d. CAD surfaces' nearly coplanar points whose differences are not
+// exact in double otherwise go to the expansions.
 int orient3dWide(const double* a, const double* b, const double* c, const double* d)
 {
   const double* const pts[4] = { a, b, c, d };
-  long long v[4][3];
-  if (!scaledCoordinates(pts, 4, v))
-    return 0;
-  Wide<1> x[3][3]; // rows a-d, b-d, c-d
-  for (int i = 0; i < 3; ++i)
-    for (int k = 0; k < 3; ++k)
-      x[i][k] = wide(v[i][k] - v[3][k]);
-  auto minor = [&x](int i, int j) // x_i y_j - x_j y_i
-  { return subtracted(multiplied(x[i][0], x[j][1]), multiplied(x[j][0], x[i][1])); };
-  // adz*(bdx*cdy - cdx*bdy) + bdz*(cdx*ady - adx*cdy) + cdz*(adx*bdy - bdx*ady)
-  const Wide<3> det =
-    added(added(multiplied(x[0][2], minor(1, 2)), multiplied(x[1][2], minor(2, 0))),
-      multiplied(x[2][2], minor(0, 1)));
-  return 2 + signOfWide(det);
+  Wide<2> x[3][3]; // rows a-d, b-d, c-d
+  const int limbs = scaledDifferences(pts, 4, x);
+  if (limbs == 1)
+  {
+    Wide<1> y[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k)
+        y[i][k] = low(x[i][k]);
+    return 2 + orient3dOfWide(y);
+  }
+  return limbs == 2 ? 2 + orient3dOfWide(x) : 0;
 }
 #else
 int insphereWide(const double*, const double*, const double*, const double*, const double*)

@@ -227,6 +227,8 @@ TEST(Predicates, NearlyCoplanarPerturbedByUlps)
     for (int k = 0; k < 3; ++k)
       d[k] = a[k] + s * (b[k] - a[k]) + t * (c[k] - a[k]);
     d = rnd.nudge(d, 2);
+    if (i % 2 == 1)
+      d[rnd.integer(0, 2)] = std::cos(M_PI / 2);
     expectOrient3d(a, b, c, d);
     expectOrient3d(d, a, b, c);
     for (int drop = 0; drop < 3; ++drop)
@@ -267,8 +269,9 @@ TEST(Predicates, NearlyCosphericalPerturbedByUlps)
 
 // Points on the unit sphere about the origin, as tessellated spheres have them (coordinates
 // in [-1, 1], some near 0): beyond the double and extended filters, decided by the stage on
-// 61-bit integer coordinates; with a coordinate of 1e-30 among them the span is too wide
-// for it and the expansions decide. Also nearly coplanar points of such spheres (orient3d).
+// integer coordinates (one limb; two with a coordinate of 6e-17 among them); with one of
+// 1e-30 the span is too wide for it and the expansions decide. Also nearly coplanar points of such
+// spheres (orient3d).
 TEST(Predicates, UnitSphereAndWideSpans)
 {
   Random rnd;
@@ -289,6 +292,8 @@ TEST(Predicates, UnitSphereAndWideSpans)
       p[rnd.integer(0, 4)][rnd.integer(0, 2)] = 1e-30; // span too wide for 61 bits
     if (i % 4 == 2)
       p[4] = p[rnd.integer(0, 3)]; // a repeated point: exactly zero
+    if (i % 4 == 3)
+      p[rnd.integer(0, 4)][rnd.integer(0, 2)] = std::cos(M_PI / 2); // 6e-17: ~106 bits
     p[4] = rnd.nudge(p[4], 2);
     expectInsphere(p[0], p[1], p[2], p[3], p[4]);
     expectInsphere(p[4], p[3], p[2], p[1], p[0]);
@@ -298,6 +303,8 @@ TEST(Predicates, UnitSphereAndWideSpans)
     const double t = rnd.uniform(-1, 1);
     Point d = { t * a[0] + (1 - t) * b[0], t * a[1] + (1 - t) * b[1], t * a[2] + (1 - t) * b[2] };
     d = rnd.nudge(d, 2);
+    if (i % 2 == 1)
+      d[rnd.integer(0, 2)] = std::cos(M_PI / 2);
     expectOrient3d(a, b, c, d);
     expectOrient3d(d, c, b, a);
   }
