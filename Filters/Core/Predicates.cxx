@@ -245,6 +245,31 @@ int insphereExtended(const double* a,
 // leaves the determinants' signs as they are.
 constexpr int kMaxLatticeBits = 24;
 
+// A finite double as significand * 2^exponent (significand < 2^53, 0 for zero), and the
+// widening of [lowest, highest] to the positions of its lowest and highest set bits.
+struct BinaryParts
+{
+  std::uint64_t significand;
+  int exponent;
+};
+BinaryParts binaryParts(double x, int& lowest, int& highest)
+{
+  std::uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  int e = static_cast<int>((bits >> 52) & 0x7FF);
+  std::uint64_t m = bits & ((std::uint64_t(1) << 52) - 1);
+  if (e != 0)
+    m |= std::uint64_t(1) << 52;
+  else
+    e = 1; // subnormal
+  if (m != 0)
+  {
+    lowest = std::min(lowest, e - 1075 + __builtin_ctzll(m));
+    highest = std::max(highest, e - 1075 + 63 - __builtin_clzll(m));
+  }
+  return { m, e - 1075 };
+}
+
 // The differences points[i] - origin as integers, scaled by 2^-(the lowest bit set in any
 // of them): returns the bits the largest then needs (every |out| < 2^bits; 0 when all are
 // zero), or -1 when a difference is not exact in double. Past kMaxLatticeBits, out is not
@@ -266,21 +291,7 @@ int integerDifferences(const double* const* points,
       if (y != 0.0 || !std::isfinite(x)) // (a NaN tail fails the first test too)
         return -1;
       diff[i][k] = x;
-      if (x == 0.0)
-        continue;
-      std::uint64_t bits;
-      std::memcpy(&bits, &x, sizeof bits);
-      int exponent = static_cast<int>((bits >> 52) & 0x7FF);
-      std::uint64_t significand = bits & ((std::uint64_t(1) << 52) - 1);
-      if (exponent != 0)
-        significand |= std::uint64_t(1) << 52;
-      else
-        exponent = 1; // subnormal
-      // |x| = significand * 2^(exponent - 1075): its lowest and highest set bits.
-      const int low = exponent - 1075 + __builtin_ctzll(significand);
-      const int high = exponent - 1075 + 63 - __builtin_clzll(significand);
-      lowest = std::min(lowest, low);
-      highest = std::max(highest, high);
+      binaryParts(x, lowest, highest);
     }
   if (lowest == std::numeric_limits<int>::max())
   {
@@ -413,17 +424,14 @@ Wide<N> added(const Wide<N>& a, const Wide<N>& b)
 template<int N>
 Wide<N> subtracted(const Wide<N>& a, const Wide<N>& b)
 {
-  return added(a, negated(b));
-}
-
-// a (M limbs) sign-extended to N limbs.
-template<int N, int M>
-Wide<N> widened(const Wide<M>& a)
-{
   Wide<N> r;
-  const std::uint64_t fill = isNegative(a) ? ~std::uint64_t(0) : 0;
+  std::uint64_t borrow = 0;
   for (int i = 0; i < N; ++i)
-    r.limb[i] = i < M ? a.limb[i] : fill;
+  {
+    const unsigned __int128 t = static_cast<unsigned __int128>(a.limb[i]) - b.limb[i] - borrow;
+    r.limb[i] = static_cast<std::uint64_t>(t);
+    borrow = static_cast<std::uint64_t>(t >> 64) & 1; // the wrap-around sets the high half
+  }
   return r;
 }
 
@@ -452,6 +460,15 @@ Wide<M + K> multiplied(const Wide<M>& a, const Wide<K>& b)
   return negative ? negated(r) : r;
 }
 
+// One limb by one: the processor's signed 64 x 64 -> 128-bit product.
+Wide<2> multiplied(const Wide<1>& a, const Wide<1>& b)
+{
+  const __int128 p = static_cast<__int128>(static_cast<std::int64_t>(a.limb[0])) *
+    static_cast<std::int64_t>(b.limb[0]);
+  const unsigned __int128 u = static_cast<unsigned __int128>(p);
+  return { { static_cast<std::uint64_t>(u), static_cast<std::uint64_t>(u >> 64) } };
+}
+
 template<int N>
 int signOfWide(const Wide<N>& a)
 {
@@ -478,27 +495,34 @@ int scaledDifferences(const double* const* points, int count, Wide<2> (*out)[3])
       const double x = points[i][k];
       if (!std::isfinite(x))
         return 0;
-      std::uint64_t bits;
-      std::memcpy(&bits, &x, sizeof bits);
-      int e = static_cast<int>((bits >> 52) & 0x7FF);
-      std::uint64_t m = bits & ((std::uint64_t(1) << 52) - 1);
-      if (e != 0)
-        m |= std::uint64_t(1) << 52;
-      else
-        e = 1; // subnormal
-      // |x| = m * 2^(e - 1075); its lowest and highest set bits.
-      significand[i][k] = m;
-      exponent[i][k] = e - 1075;
-      if (m == 0)
-        continue;
-      lowest = std::min(lowest, e - 1075 + __builtin_ctzll(m));
-      highest = std::max(highest, e - 1075 + 63 - __builtin_clzll(m));
+      const BinaryParts parts = binaryParts(x, lowest, highest);
+      significand[i][k] = parts.significand;
+      exponent[i][k] = parts.exponent;
     }
   if (lowest == std::numeric_limits<int>::max())
     lowest = highest = 0; // all zero
   const int span = highest - lowest + 1;
   if (span > 125)
     return 0;
+  if (span <= 61 && lowest >= -1022 && lowest <= 1022)
+  {
+    // Within one limb: scaling by 2^-lowest (a normal double) is exact, and so is the
+    // conversion of the integer it gives, below 2^61.
+    const std::uint64_t scaleBits = static_cast<std::uint64_t>(1023 - lowest) << 52;
+    double scale;
+    std::memcpy(&scale, &scaleBits, sizeof scale);
+    long long v[5][3];
+    for (int i = 0; i < count; ++i)
+      for (int k = 0; k < 3; ++k)
+        v[i][k] = static_cast<long long>(points[i][k] * scale);
+    for (int i = 0; i + 1 < count; ++i)
+      for (int k = 0; k < 3; ++k)
+      {
+        const long long d = v[i][k] - v[count - 1][k]; // below 2^62
+        out[i][k] = { { static_cast<std::uint64_t>(d), d < 0 ? ~std::uint64_t(0) : 0 } };
+      }
+    return 1;
+  }
   __int128 v[5][3];
   for (int i = 0; i < count; ++i)
     for (int k = 0; k < 3; ++k)
