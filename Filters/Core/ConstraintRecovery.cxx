@@ -204,6 +204,7 @@ public:
     , lastPoll_(start_)
   {
     index_.rebuild(mesh_);
+    deep_.memoizeCandidates = true;
     // The edges are sorted (a < b): those of input point a start at edgeStart_[a].
     edgeStart_.assign(static_cast<std::size_t>(surface_.pointCount) + 1, 0);
     for (const auto& edge : surface_.edges)
@@ -997,6 +998,7 @@ bool Recovery::flipUntil(VertexId seed,
   lastSearchCost_ = cost;
   flip23Cache_.clear();
   edgeRemovalCache_.clear();
+  deep_.forgetCandidates(); // a new measure (and constrained faces may have been added)
   search_ = search;
   // An edge alone, seeded at one of its ends: collectPipe's cone test applies.
   const VertexId* segment = exactCost.segment;

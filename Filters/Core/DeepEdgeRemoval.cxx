@@ -66,6 +66,66 @@ void DeepEdgeRemoval::undoTo(std::size_t mark, int delta)
   journal.delta = delta;
 }
 
+void DeepEdgeRemoval::forgetCandidates()
+{
+  rememberedByHash_.clear();
+  rememberedCount_ = 0; // the entries keep their vectors for reuse
+}
+
+bool DeepEdgeRemoval::removalCandidate(TetId t,
+  VertexId p,
+  VertexId q,
+  const std::vector<TetId>& shell,
+  const std::vector<VertexId>& ring,
+  const FlipCost& cost,
+  FlipCandidate& out)
+{
+  if (!memoizeCandidates)
+    return edgeRemovalCandidate(mesh_, t, p, q, cost, out);
+  std::vector<VertexId>& key = keyScratch_;
+  key.assign({ p, q });
+  key.insert(key.end(), ring.begin(), ring.end());
+  std::uint64_t hash = 0x9e3779b97f4a7c15ull;
+  for (VertexId v : key)
+    hash = (hash ^ static_cast<std::uint32_t>(v)) * 0x100000001b3ull;
+  std::int32_t* head = rememberedByHash_.find(hash);
+  for (std::int32_t e = head ? *head : -1; e >= 0; e = remembered_[e].next)
+  {
+    const RememberedRemoval& entry = remembered_[e];
+    if (entry.key != key)
+      continue;
+    if (entry.ok)
+    {
+      out.newTets = entry.candidate.newTets;
+      out.oldCost = entry.candidate.oldCost;
+      out.newCost = entry.candidate.newCost;
+      out.minQuality = entry.candidate.minQuality;
+      out.oldTets = shell; // what edgeRemovalCandidate walks from t too
+    }
+    return entry.ok;
+  }
+  const bool ok = edgeRemovalCandidate(mesh_, t, p, q, cost, out);
+  if (rememberedCount_ == remembered_.size())
+    remembered_.emplace_back();
+  const auto index = static_cast<std::int32_t>(rememberedCount_++);
+  RememberedRemoval& entry = remembered_[index];
+  entry.key = key;
+  entry.ok = ok;
+  if (ok)
+  {
+    entry.candidate.newTets = out.newTets;
+    entry.candidate.oldCost = out.oldCost;
+    entry.candidate.newCost = out.newCost;
+    entry.candidate.minQuality = out.minQuality;
+  }
+  entry.next = head ? *head : -1;
+  if (head)
+    *head = index;
+  else
+    rememberedByHash_.insert(hash, index);
+  return ok;
+}
+
 bool DeepEdgeRemoval::remove(VertexId p, VertexId q, int level, const FlipCost& cost, int& budget)
 {
   // Rings longer than this are left alone (TetGen limits its flip star the same way).
@@ -101,7 +161,7 @@ bool DeepEdgeRemoval::remove(VertexId p, VertexId q, int level, const FlipCost& 
         return false;
     }
     --budget;
-    if (edgeRemovalCandidate(mesh_, t, p, q, cost, move) && move.newCost <= move.oldCost)
+    if (removalCandidate(t, p, q, shell, ring, cost, move) && move.newCost <= move.oldCost)
     {
       apply(move);
       return true;

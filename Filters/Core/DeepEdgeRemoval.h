@@ -6,6 +6,7 @@
 // Steiner points (any valid move: the measure is empty).
 #pragma once
 
+#include "EpochHashTable.h"
 #include "Flips.h"
 
 #include <functional>
@@ -49,13 +50,41 @@ public:
   // could succeed: once one of their tets changed).
   std::vector<VertexId>* seen = nullptr;
 
+  // When set, edge removal candidates are remembered by their edge and ring: attempts that
+  // are undone come back to the same shells (boundary recovery: over half of the shells a
+  // flip search examines), and the ring determines the shell's tets, hence the candidate.
+  // Valid for one measure and unchanged constrained flags: call forgetCandidates when either
+  // changes.
+  bool memoizeCandidates = false;
+  void forgetCandidates();
+
 private:
   void apply(const FlipCandidate& move);
+  // edgeRemovalCandidate for the shell and ring of (p,q) walked from t, remembered when
+  // memoizeCandidates is set.
+  bool removalCandidate(TetId t,
+    VertexId p,
+    VertexId q,
+    const std::vector<TetId>& shell,
+    const std::vector<VertexId>& ring,
+    const FlipCost& cost,
+    FlipCandidate& out);
 
   TetMesh& mesh_;
   VertexTetIndex& index_;
   std::function<bool(VertexId, VertexId)> fixedEdge_;
   std::vector<TetId> star_;
+  struct RememberedRemoval
+  {
+    std::vector<VertexId> key; // p, q, then the ring
+    bool ok = false;
+    FlipCandidate candidate; // without its old tets (their ids change)
+    std::int32_t next = -1;  // the next entry of the same hash, or -1
+  };
+  EpochHashTable<std::uint64_t, std::int32_t, MixHash64> rememberedByHash_;
+  std::vector<RememberedRemoval> remembered_; // the first rememberedCount_ are live
+  std::size_t rememberedCount_ = 0;
+  std::vector<VertexId> keyScratch_;
 };
 
 } // namespace tetmesher
