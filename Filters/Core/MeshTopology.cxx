@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cstdint>
 
 namespace tetmesher
 {
@@ -204,18 +205,41 @@ void replaceTets(TetMesh& mesh,
 {
   if (created)
     created->clear();
-  struct BoundaryFace
+  // The faces of the region (boundary: the old tets' faces that stay, with what lies across
+  // them) and the new tets' faces not yet glued (open), matched by their sorted vertices in a
+  // small hash table: a linear search per new face was most of this function's time, which
+  // recovery and optimisation spend on every move, made or undone. A boundary face matches
+  // before an open one, and the first of equal boundary faces wins, as a linear search would
+  // (equal faces only arise on broken meshes, e.g. unchecked self-intersecting input).
+  struct Face
   {
     std::array<VertexId, 3> key;
-    FaceRef outside;
-    bool constrained;
+    FaceRef outside;  // boundary: the face across (or kNoNeighbor); open: makeFaceRef(t, f)
+    bool constrained; // boundary only
+    bool boundary;
   };
-  // Element-wise (std::array's == becomes a memcmp call here, the hot spot of this loop).
+  // Element-wise (std::array's == becomes a memcmp call here).
   auto same = [](const std::array<VertexId, 3>& x, const std::array<VertexId, 3>& y)
   { return x[0] == y[0] && x[1] == y[1] && x[2] == y[2]; };
   // Scratch kept between calls: recovery and optimisation call this for every move.
-  thread_local std::vector<BoundaryFace> boundary;
-  boundary.clear();
+  thread_local std::vector<Face> faces;
+  thread_local std::vector<std::int32_t> slots; // index into faces, -1: empty
+  faces.clear();
+  std::size_t size = 16;
+  while (size < 2 * 4 * (oldTets.size() + newTets.size()))
+    size *= 2;
+  slots.assign(size, -1);
+  const std::size_t mask = size - 1;
+  // The slot of `key`: the one holding it, else the empty one where it would go.
+  auto slotOf = [&](const std::array<VertexId, 3>& key) -> std::int32_t&
+  {
+    std::uint64_t h = static_cast<std::uint32_t>(key[0]) * 0x9e3779b97f4a7c15ull ^
+      static_cast<std::uint32_t>(key[1]) * 0xc2b2ae3d27d4eb4full ^
+      static_cast<std::uint32_t>(key[2]) * 0x165667b19e3779f9ull;
+    for (std::size_t i = (h ^ (h >> 29)) & mask;; i = (i + 1) & mask)
+      if (slots[i] < 0 || same(faces[slots[i]].key, key))
+        return slots[i];
+  };
   for (TetId t : oldTets)
   {
     for (int f = 0; f < 4; ++f)
@@ -225,23 +249,20 @@ void replaceTets(TetMesh& mesh,
         std::find(oldTets.begin(), oldTets.end(), faceTet(n)) != oldTets.end())
         continue;
       const int* fv = kFaceVertices[f];
-      boundary.push_back(
-        { sortedTriangle(mesh.vertex(t, fv[0]), mesh.vertex(t, fv[1]), mesh.vertex(t, fv[2])),
-          n,
-          mesh.isConstrained(t, f) });
+      const auto key =
+        sortedTriangle(mesh.vertex(t, fv[0]), mesh.vertex(t, fv[1]), mesh.vertex(t, fv[2]));
+      std::int32_t& slot = slotOf(key);
+      if (slot < 0)
+      {
+        slot = static_cast<std::int32_t>(faces.size());
+        faces.push_back({ key, n, mesh.isConstrained(t, f), true });
+      }
     }
   }
   for (TetId t : oldTets)
     mesh.deleteTet(t);
 
-  struct OpenFace
-  {
-    std::array<VertexId, 3> key;
-    TetId tet;
-    int face;
-  };
-  thread_local std::vector<OpenFace> open;
-  open.clear();
+  std::size_t openCount = 0;
   for (const TetVertices& v : newTets)
   {
     TetId t = mesh.addTet(v[0], v[1], v[2], v[3]);
@@ -251,30 +272,38 @@ void replaceTets(TetMesh& mesh,
     for (int f = 0; f < 4; ++f)
     {
       const int* fv = kFaceVertices[f];
-      auto key = sortedTriangle(v[fv[0]], v[fv[1]], v[fv[2]]);
-      auto b = std::find_if(
-        boundary.begin(), boundary.end(), [&](const BoundaryFace& x) { return same(x.key, key); });
-      if (b != boundary.end())
+      const auto key = sortedTriangle(v[fv[0]], v[fv[1]], v[fv[2]]);
+      std::int32_t& slot = slotOf(key);
+      Face* face = slot < 0 ? nullptr : &faces[slot];
+      if (face && face->boundary)
       {
-        if (b->outside == kNoNeighbor)
+        if (face->outside == kNoNeighbor)
           mesh.setHull(t, f);
         else
-          mesh.glue(t, f, faceTet(b->outside), faceIndex(b->outside));
-        mesh.setConstrained(t, f, b->constrained);
-        continue;
+          mesh.glue(t, f, faceTet(face->outside), faceIndex(face->outside));
+        mesh.setConstrained(t, f, face->constrained);
       }
-      auto o =
-        std::find_if(open.begin(), open.end(), [&](const OpenFace& x) { return same(x.key, key); });
-      if (o != open.end())
+      else if (face && face->outside != kNoNeighbor)
       {
-        mesh.glue(t, f, o->tet, o->face);
-        open.erase(o);
+        mesh.glue(t, f, faceTet(face->outside), faceIndex(face->outside));
+        face->outside = kNoNeighbor; // glued: the slot stays, free for a later equal face
+        --openCount;
       }
       else
-        open.push_back({ key, t, f });
+      {
+        if (face)
+          face->outside = makeFaceRef(t, f);
+        else
+        {
+          slot = static_cast<std::int32_t>(faces.size());
+          faces.push_back({ key, makeFaceRef(t, f), false, false });
+        }
+        ++openCount;
+      }
     }
   }
-  assert(open.empty());
+  assert(openCount == 0);
+  (void)openCount;
 }
 
 } // namespace tetmesher
