@@ -53,8 +53,8 @@ public:
   // When set, edge removal candidates are remembered by their edge and ring: attempts that
   // are undone come back to the same shells (boundary recovery: over half of the shells a
   // flip search examines), and the ring determines the shell's tets, hence the candidate.
-  // Valid for one measure and unchanged constrained flags: call forgetCandidates when either
-  // changes.
+  // Valid for one measure and fixed points: call forgetCandidates when the measure changes.
+  // (The constrained faces around the edge are checked before the candidate, on every call.)
   bool memoizeCandidates = false;
   void forgetCandidates();
 

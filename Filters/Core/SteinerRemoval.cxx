@@ -286,6 +286,8 @@ int removeSteinerPoints(TetMesh& mesh, std::vector<VertexId>& steiner)
   index.rebuild(mesh);
   // Constrained faces keep the input edges: every one has its input triangles around it.
   DeepEdgeRemoval deep(mesh, index);
+  // One measure (none) for the whole run, and no point moves: every candidate stays valid.
+  deep.memoizeCandidates = true;
   VertexStar star;
   Changes changes;
   changes.at.assign(static_cast<std::size_t>(mesh.vertexCount()), 0);
