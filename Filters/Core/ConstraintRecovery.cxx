@@ -490,6 +490,15 @@ private:
   std::uint64_t tetCostEpoch_ = 0;
   std::vector<TetCostEntry> tetCostCache_;
   const FlipCost* tetCostOwner_ = nullptr;
+  // collectPipe's cone test of a tet of the seed's star, per tet id while its vertices are the
+  // same: the star is walked again for every move of the flip search, and most of it stays.
+  struct ConeEntry
+  {
+    TetVertices vertices;
+    std::uint64_t epoch = 0; // valid when equal to tetCostEpoch_
+    bool misses = false;
+  };
+  std::vector<ConeEntry> coneCache_;
   std::vector<VertexId> ringScratch_;
   std::vector<std::shared_ptr<MemoCaches>> memoPool_;
   FlipCost lastSearchCost_; // the memoized measure of the latest flipUntil
@@ -841,9 +850,16 @@ void Recovery::collectPipe(VertexId seed, const FlipCost& cost, std::vector<TetI
     if (coneTest)
     {
       const TetVertices v = tetVertices(t);
-      const double* p[4] = { point(v[0]), point(v[1]), point(v[2]), point(v[3]) };
-      const int i = v[0] == seed ? 0 : v[1] == seed ? 1 : v[2] == seed ? 2 : 3;
-      if (geometry::segmentFromVertexMissesTet(p, i, point(coneTip_)))
+      if (static_cast<std::size_t>(t) >= coneCache_.size())
+        coneCache_.resize(2 * static_cast<std::size_t>(t) + 16);
+      ConeEntry& entry = coneCache_[t];
+      if (entry.epoch != tetCostEpoch_ || entry.vertices != v)
+      {
+        const double* p[4] = { point(v[0]), point(v[1]), point(v[2]), point(v[3]) };
+        const int i = v[0] == seed ? 0 : v[1] == seed ? 1 : v[2] == seed ? 2 : 3;
+        entry = { v, tetCostEpoch_, geometry::segmentFromVertexMissesTet(p, i, point(coneTip_)) };
+      }
+      if (entry.misses)
         continue;
     }
     if (tetCost(cost, t) > 0)
@@ -1004,7 +1020,7 @@ bool Recovery::flipUntil(VertexId seed,
   const VertexId* segment = exactCost.segment;
   coneApex_ = seed == segment[0] || seed == segment[1] ? seed : -1;
   coneTip_ = seed == segment[0] ? segment[1] : segment[0];
-  ++tetCostEpoch_; // forget the cached tet costs (in O(1))
+  ++tetCostEpoch_; // forget the cached tet costs and cone tests (in O(1))
   tetCostOwner_ = &cost;
   struct OwnerReset
   {
