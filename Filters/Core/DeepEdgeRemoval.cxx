@@ -37,6 +37,10 @@ void DeepEdgeRemoval::undoTo(std::size_t mark, int delta)
   auto verticesOf = [this](TetId t) -> TetVertices {
     return { mesh_.vertex(t, 0), mesh_.vertex(t, 1), mesh_.vertex(t, 2), mesh_.vertex(t, 3) };
   };
+  // restoredIds_: the ids under which undos restored tets, by their vertices (in order), to
+  // find where an earlier move's tet came back without searching a star for it. An entry is
+  // used only while its tet is live with those vertices (then it is the one tet that has
+  // them), so the nested undos of a removal can share it; cleared when the journal empties.
   while (journal.entries.size() > mark)
   {
     const JournalEntry& entry = journal.entries.back();
@@ -48,21 +52,36 @@ void DeepEdgeRemoval::undoTo(std::size_t mark, int delta)
       if (verticesOf(id) != v)
       {
         // Undoing a later move put this tet back under another id: find it by its vertices.
-        vertexStar(mesh_, index_, v[0], star_);
+        const TetId* restored = restoredIds_.find(v);
         id = -1;
-        for (TetId t : star_)
+        if (restored && !mesh_.isDeleted(*restored) && verticesOf(*restored) == v)
+          id = *restored;
+        else
         {
-          if (verticesOf(t) == v)
-            id = t;
+          vertexStar(mesh_, index_, v[0], star_);
+          for (TetId t : star_)
+          {
+            if (verticesOf(t) == v)
+              id = t;
+          }
         }
       }
       tets.push_back(id);
     }
     // Moves are undone last first, so every tet a move created is there again.
     assert(std::find(tets.begin(), tets.end(), TetId(-1)) == tets.end());
-    replaceTets(mesh_, index_, tets, entry.old);
+    replaceTets(mesh_, index_, tets, entry.old, &restoredScratch_);
+    for (std::size_t i = 0; i < entry.old.size(); ++i)
+    {
+      if (TetId* slot = restoredIds_.find(entry.old[i]))
+        *slot = restoredScratch_[i];
+      else
+        restoredIds_.insert(entry.old[i], restoredScratch_[i]);
+    }
     journal.entries.pop_back();
   }
+  if (journal.entries.empty())
+    restoredIds_.clear();
   journal.delta = delta;
 }
 

@@ -85,6 +85,18 @@ private:
   std::vector<RememberedRemoval> remembered_; // the first rememberedCount_ are live
   std::size_t rememberedCount_ = 0;
   std::vector<VertexId> keyScratch_;
+  struct TetVerticesHash
+  {
+    std::size_t operator()(const TetVertices& t) const
+    {
+      std::uint64_t h = 0x9e3779b97f4a7c15ull;
+      for (VertexId v : t)
+        h = (h ^ static_cast<std::uint32_t>(v)) * 0x100000001b3ull;
+      return static_cast<std::size_t>(h ^ (h >> 29));
+    }
+  };
+  EpochHashTable<TetVertices, TetId, TetVerticesHash> restoredIds_; // undoTo
+  std::vector<TetId> restoredScratch_;
 };
 
 } // namespace tetmesher
