@@ -51,6 +51,8 @@ public:
     takeEmptied(tetFailedVerts_, previous.tetFailedVerts_);
     takeEmptied(insertFailed_, previous.insertFailed_);
     takeEmptied(insertFailedVerts_, previous.insertFailedVerts_);
+    edgeFailed_ = std::move(previous.edgeFailed_);
+    edgeFailed_.clear();
   }
 
   OptimizationResult run(const std::function<bool(double)>& progress);
