@@ -301,9 +301,11 @@ int integerDifferences(const double* const* points,
     return 0;
   }
   const int needed = highest - lowest + 1;
-  // 2^-lowest must be a normal double (|lowest| <= 1022) to scale by it exactly.
-  if (needed > kMaxLatticeBits || lowest < -1022 || lowest > 1022)
+  if (needed > kMaxLatticeBits)
     return needed;
+  // 2^-lowest must be a normal double (|lowest| <= 1022) to scale by it exactly.
+  if (lowest < -1022 || lowest > 1022)
+    return -1;
   std::uint64_t scaleBits = static_cast<std::uint64_t>(1023 - lowest) << 52;
   double scale;
   std::memcpy(&scale, &scaleBits, sizeof scale);

@@ -308,6 +308,19 @@ TEST(Predicates, UnitSphereAndWideSpans)
     expectOrient3d(a, b, c, d);
     expectOrient3d(d, c, b, a);
   }
+  // Subnormal coordinates: differences of a few bits whose scaling 2^1074 is no double.
+  for (int i = 0; i < 2000; ++i)
+  {
+    auto tiny = [&rnd]()
+    {
+      return Point{
+        rnd.integer(-8, 8) * 5e-324, rnd.integer(-8, 8) * 5e-324, rnd.integer(-8, 8) * 5e-324
+      };
+    };
+    const Point a = tiny(), b = tiny(), c = tiny(), d = tiny(), e = tiny();
+    expectOrient3d(a, b, c, d);
+    expectInsphere(a, b, c, d, e);
+  }
 }
 
 TEST(Predicates, ExactlyDegenerateIntegerInput)
