@@ -375,14 +375,16 @@ int insphereLattice(const double* a,
 }
 
 #ifdef __SIZEOF_INT128__
-// Fourth stage for insphere: the coordinates themselves as integers. Any five points whose
-// 15 coordinates span at most 61 bits (from the highest bit of the largest to the lowest
-// bit set in any) are, after scaling by a power of two, integers below 2^61: their
-// differences are exact int64 values below 2^62, and the determinant an integer below 2^317,
-// evaluated exactly in 5 limbs of 64 bits; up to 125 bits, in twice the limbs. Points on a sphere
-// computed in floating point (icosphere.vtp, uv_sphere.vtp: coordinates in [-1, 1]) are nearly
-// co-spherical beyond the extended stage's reach, and the expansions took ~25k instructions per
-// test: the surface Delaunay of icosphere.vtp, 10k such tests, was 16% of a refinement run at h/2.
+// Fourth stage (insphere and orient3d): the coordinates themselves as integers. Points whose
+// coordinates span at most 61 bits (from the highest bit of the largest to the lowest bit set
+// in any) are, after scaling by a power of two, integers below 2^61: their differences are
+// exact int64 values below 2^62, and the in-sphere determinant an integer below 2^317,
+// evaluated exactly in 5 limbs of 64 bits; up to 125 bits, in twice the limbs. Points on a
+// sphere computed in floating point (icosphere.vtp, uv_sphere.vtp: coordinates in [-1, 1])
+// are nearly co-spherical beyond the extended stage's reach, and the expansions took ~25k
+// instructions per test: the surface Delaunay of icosphere.vtp, 10k such tests, was 16% of a
+// refinement run at h/2 (counted under valgrind, where the extended stage is off).
+
 // Signed integers of N 64-bit limbs, two's complement, least significant limb first.
 template<int N>
 struct Wide
@@ -562,8 +564,9 @@ int insphereOfWide(const Wide<L> (&x)[4][3])
 {
   auto minor = [&x](int i, int j) // x_i y_j - x_j y_i
   { return subtracted(multiplied(x[i][0], x[j][1]), multiplied(x[j][0], x[i][1])); };
-  const Wide<2 *L> ab = minor(0, 1), bc = minor(1, 2), cd = minor(2, 3);
-  const Wide<2 *L> da = minor(3, 0), ac = minor(0, 2), bd = minor(1, 3);
+  using Minor = Wide<2 * L>;
+  const Minor ab = minor(0, 1), bc = minor(1, 2), cd = minor(2, 3);
+  const Minor da = minor(3, 0), ac = minor(0, 2), bd = minor(1, 3);
   const Wide<3 * L> abc =
     added(subtracted(multiplied(x[0][2], bc), multiplied(x[1][2], ac)), multiplied(x[2][2], ab));
   const Wide<3 * L> bcd =
