@@ -72,12 +72,7 @@ void DeepEdgeRemoval::undoTo(std::size_t mark, int delta)
     assert(std::find(tets.begin(), tets.end(), TetId(-1)) == tets.end());
     replaceTets(mesh_, index_, tets, entry.old, &restoredScratch_);
     for (std::size_t i = 0; i < entry.old.size(); ++i)
-    {
-      if (TetId* slot = restoredIds_.find(entry.old[i]))
-        *slot = restoredScratch_[i];
-      else
-        restoredIds_.insert(entry.old[i], restoredScratch_[i]);
-    }
+      restoredIds_.assign(entry.old[i], restoredScratch_[i]);
     journal.entries.pop_back();
   }
   if (journal.entries.empty())

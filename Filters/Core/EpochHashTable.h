@@ -70,6 +70,15 @@ public:
     }
   }
 
+  // Sets k's value, adding k when it is not in.
+  void assign(const Key& k, const Value& value)
+  {
+    if (Value* known = find(k))
+      *known = value;
+    else
+      insert(k, value);
+  }
+
   void clear()
   {
     size_ = 0;

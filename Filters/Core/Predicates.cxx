@@ -270,6 +270,16 @@ BinaryParts binaryParts(double x, int& lowest, int& highest)
   return { m, e - 1075 };
 }
 
+// 2^e as a double, for |e| <= 1022 (a normal number: multiplying by it is exact unless the
+// product leaves the normal range).
+double powerOfTwo(int e)
+{
+  const std::uint64_t bits = static_cast<std::uint64_t>(1023 + e) << 52;
+  double x;
+  std::memcpy(&x, &bits, sizeof x);
+  return x;
+}
+
 // The differences points[i] - origin as integers, scaled by 2^-(the lowest bit set in any
 // of them): returns the bits the largest then needs (every |out| < 2^bits; 0 when all are
 // zero), or -1 when a difference is not exact in double. Past kMaxLatticeBits, out is not
@@ -306,9 +316,7 @@ int integerDifferences(const double* const* points,
   // 2^-lowest must be a normal double (|lowest| <= 1022) to scale by it exactly.
   if (lowest < -1022 || lowest > 1022)
     return -1;
-  std::uint64_t scaleBits = static_cast<std::uint64_t>(1023 - lowest) << 52;
-  double scale;
-  std::memcpy(&scale, &scaleBits, sizeof scale);
+  const double scale = powerOfTwo(-lowest);
   for (int i = 0; i < count; ++i)
     for (int k = 0; k < 3; ++k)
       out[i][k] = static_cast<long long>(diff[i][k] * scale);
@@ -398,45 +406,36 @@ bool isNegative(const Wide<N>& a)
   return (a.limb[N - 1] >> 63) != 0;
 }
 
-template<int N>
-Wide<N> negated(Wide<N> a)
-{
-  std::uint64_t carry = 1;
-  for (int i = 0; i < N; ++i)
-  {
-    const std::uint64_t x = ~a.limb[i];
-    a.limb[i] = x + carry;
-    carry = a.limb[i] < x ? 1 : 0;
-  }
-  return a;
-}
-
-// a + b, or a - b; the bounds above keep every result far from overflow.
-template<int N>
-Wide<N> added(const Wide<N>& a, const Wide<N>& b)
+// a + b, or a - b as a + ~b + 1: one carry chain for both; the bounds above keep every
+// result far from overflow.
+template<bool Subtract, int N>
+Wide<N> carried(const Wide<N>& a, const Wide<N>& b)
 {
   Wide<N> r;
-  std::uint64_t carry = 0;
+  std::uint64_t carry = Subtract ? 1 : 0;
   for (int i = 0; i < N; ++i)
   {
-    const unsigned __int128 t = static_cast<unsigned __int128>(a.limb[i]) + b.limb[i] + carry;
+    const std::uint64_t y = Subtract ? ~b.limb[i] : b.limb[i];
+    const unsigned __int128 t = static_cast<unsigned __int128>(a.limb[i]) + y + carry;
     r.limb[i] = static_cast<std::uint64_t>(t);
     carry = static_cast<std::uint64_t>(t >> 64);
   }
   return r;
 }
 template<int N>
+Wide<N> added(const Wide<N>& a, const Wide<N>& b)
+{
+  return carried<false>(a, b);
+}
+template<int N>
 Wide<N> subtracted(const Wide<N>& a, const Wide<N>& b)
 {
-  Wide<N> r;
-  std::uint64_t borrow = 0;
-  for (int i = 0; i < N; ++i)
-  {
-    const unsigned __int128 t = static_cast<unsigned __int128>(a.limb[i]) - b.limb[i] - borrow;
-    r.limb[i] = static_cast<std::uint64_t>(t);
-    borrow = static_cast<std::uint64_t>(t >> 64) & 1; // the wrap-around sets the high half
-  }
-  return r;
+  return carried<true>(a, b);
+}
+template<int N>
+Wide<N> negated(const Wide<N>& a)
+{
+  return subtracted(Wide<N>{}, a);
 }
 
 // The product of a (M limbs) and b (K limbs), M + K limbs: magnitudes by schoolbook.
@@ -512,9 +511,7 @@ int scaledDifferences(const double* const* points, int count, Wide<2> (*out)[3])
   {
     // Within one limb: scaling by 2^-lowest (a normal double) is exact, and so is the
     // conversion of the integer it gives, below 2^61.
-    const std::uint64_t scaleBits = static_cast<std::uint64_t>(1023 - lowest) << 52;
-    double scale;
-    std::memcpy(&scale, &scaleBits, sizeof scale);
+    const double scale = powerOfTwo(-lowest);
     long long v[5][3];
     for (int i = 0; i < count; ++i)
       for (int k = 0; k < 3; ++k)

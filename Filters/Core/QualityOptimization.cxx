@@ -313,14 +313,12 @@ bool Optimizer::improveTet(TetId t, std::vector<TetId>& created)
   {
     const VertexId p = ctx_.mesh.vertex(t, e[0]), q = ctx_.mesh.vertex(t, e[1]);
     const std::uint64_t key = edgeKey(p, q);
-    std::uint64_t* failed = edgeFailed_.find(key);
+    const std::uint64_t* failed = edgeFailed_.find(key);
     if (failed && unchangedSince(p, *failed) && unchangedSince(q, *failed))
       continue;
     const bool ok = findEdgeRemoval(ctx_, t, p, q, cand);
-    if (!ok && failed)
-      *failed = clock_;
-    else if (!ok)
-      edgeFailed_.insert(key, clock_);
+    if (!ok)
+      edgeFailed_.assign(key, clock_);
     consider(ok);
   }
   for (int f = 0; f < 4; ++f)
