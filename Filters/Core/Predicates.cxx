@@ -594,43 +594,41 @@ int orient3dOfWide(const Wide<L> (&x)[3][3])
   return signOfWide(det);
 }
 
-// 0 when not applicable, else 1 + (sign + 1), as insphereLattice.
+// The sign that `sign` gives on the points' differences from the last one (Rows of them),
+// in one limb when they fit, else in two; as insphereLattice codes it: 0 when not applicable
+// (the points span too many bits), else 1 + (sign + 1).
+template<int Rows, typename Sign>
+int wideSign(const double* const* points, const Sign& sign)
+{
+  Wide<2> x[Rows][3];
+  const int limbs = scaledDifferences(points, Rows + 1, x);
+  if (limbs == 1)
+  {
+    Wide<1> y[Rows][3];
+    for (int i = 0; i < Rows; ++i)
+      for (int k = 0; k < 3; ++k)
+        y[i][k] = low(x[i][k]);
+    return 2 + sign(y);
+  }
+  return limbs == 2 ? 2 + sign(x) : 0;
+}
+
 int insphereWide(const double* a,
   const double* b,
   const double* c,
   const double* d,
   const double* e)
 {
-  const double* const pts[5] = { a, b, c, d, e };
-  Wide<2> x[4][3]; // rows a-e .. d-e
-  const int limbs = scaledDifferences(pts, 5, x);
-  if (limbs == 1)
-  {
-    Wide<1> y[4][3];
-    for (int i = 0; i < 4; ++i)
-      for (int k = 0; k < 3; ++k)
-        y[i][k] = low(x[i][k]);
-    return 2 + insphereOfWide(y);
-  }
-  return limbs == 2 ? 2 + insphereOfWide(x) : 0;
+  const double* const points[5] = { a, b, c, d, e };
+  return wideSign<4>(points, [](const auto& x) { return insphereOfWide(x); });
 }
 
 // The same for orient3d. CAD surfaces' nearly coplanar points whose differences are not
 // exact in double otherwise go to the expansions.
 int orient3dWide(const double* a, const double* b, const double* c, const double* d)
 {
-  const double* const pts[4] = { a, b, c, d };
-  Wide<2> x[3][3]; // rows a-d, b-d, c-d
-  const int limbs = scaledDifferences(pts, 4, x);
-  if (limbs == 1)
-  {
-    Wide<1> y[3][3];
-    for (int i = 0; i < 3; ++i)
-      for (int k = 0; k < 3; ++k)
-        y[i][k] = low(x[i][k]);
-    return 2 + orient3dOfWide(y);
-  }
-  return limbs == 2 ? 2 + orient3dOfWide(x) : 0;
+  const double* const points[4] = { a, b, c, d };
+  return wideSign<3>(points, [](const auto& x) { return orient3dOfWide(x); });
 }
 #else
 int insphereWide(const double*, const double*, const double*, const double*, const double*)
