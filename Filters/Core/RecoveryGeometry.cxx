@@ -4,6 +4,7 @@
 #include "Predicates.h"
 
 #include <algorithm>
+#include <iterator>
 
 namespace tetmesher
 {
@@ -263,6 +264,25 @@ bool simplexMeetsTetInteriorBySeparation(const double* const* points,
   const int n = 4 + count;
   for (int i = 0; i < count; ++i)
     all[4 + i] = points[i];
+  // The planes test up to 140 orientations but only 35 distinct point sets: each sign is
+  // computed once, in increasing index order, by the set's bitmask (2: not yet). The signs
+  // are exact, so a permutation only multiplies them by its parity.
+  signed char signs[128];
+  std::fill(std::begin(signs), std::end(signs), static_cast<signed char>(2));
+  // orient3d(all[i], all[j], all[k], all[m]) for i < j < k.
+  auto orientation = [&](int i, int j, int k, int m)
+  {
+    signed char& sign = signs[(1 << i) | (1 << j) | (1 << k) | (1 << m)];
+    if (sign == 2)
+    {
+      sign = static_cast<signed char>(m < i ? orient3d(all[m], all[i], all[j], all[k])
+          : m < j                           ? orient3d(all[i], all[m], all[j], all[k])
+          : m < k                           ? orient3d(all[i], all[j], all[m], all[k])
+                                            : orient3d(all[i], all[j], all[k], all[m]));
+    }
+    // m moves past the indices above it: one transposition each.
+    return ((i > m) + (j > m) + (k > m)) % 2 == 0 ? sign : -sign;
+  };
   for (int pass = 0; pass < 2; ++pass)
   {
     for (int i = 0; i < n; ++i)
@@ -281,7 +301,7 @@ bool simplexMeetsTetInteriorBySeparation(const double* const* points,
           {
             if (m == i || m == j || m == k)
               continue; // on the plane by construction
-            int s = orient3d(all[i], all[j], all[k], all[m]);
+            const int s = orientation(i, j, k, m);
             if (s == 0)
               continue;
             degenerate = false;
