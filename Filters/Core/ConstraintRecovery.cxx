@@ -1137,7 +1137,7 @@ bool Recovery::removeCrossingDeep(const std::vector<TetId>& pipe,
   // Deep removals stamp nothing while they run: one that is undone leaves the same tets, and
   // one that is kept stamps everything it changed at once.
   DeepEdgeRemoval::Journal& journal = deep_.journal;
-  journal = {};
+  deep_.resetJournal();
   std::vector<VertexId> examined;
   deep_.seen = &examined;
   for (const auto& edge : crossing)
@@ -1166,7 +1166,7 @@ bool Recovery::removeCrossingDeep(const std::vector<TetId>& pipe,
       for (const auto& entry : journal.entries)
         ++(entry.old.size() == 2 && entry.created.size() == 3 ? result_.flips23
                                                               : result_.edgeRemovals);
-      journal = {};
+      deep_.resetJournal();
       return true;
     }
     deep_.undoTo(0, 0);

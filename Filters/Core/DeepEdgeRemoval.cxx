@@ -20,7 +20,15 @@ DeepEdgeRemoval::DeepEdgeRemoval(TetMesh& mesh,
 
 void DeepEdgeRemoval::apply(const FlipCandidate& move)
 {
-  JournalEntry entry;
+  if (spareEntries_.empty())
+    journal.entries.emplace_back();
+  else
+  {
+    journal.entries.push_back(std::move(spareEntries_.back()));
+    spareEntries_.pop_back();
+  }
+  JournalEntry& entry = journal.entries.back();
+  entry.old.clear();
   for (TetId t : move.oldTets)
     entry.old.push_back(
       { mesh_.vertex(t, 0), mesh_.vertex(t, 1), mesh_.vertex(t, 2), mesh_.vertex(t, 3) });
@@ -28,12 +36,20 @@ void DeepEdgeRemoval::apply(const FlipCandidate& move)
   replaceTets(mesh_, index_, move.oldTets, move.newTets, &entry.createdIds);
   journal.delta += move.newCost - move.oldCost;
   ++journal.moves;
-  journal.entries.push_back(std::move(entry));
+}
+
+void DeepEdgeRemoval::resetJournal()
+{
+  for (JournalEntry& entry : journal.entries)
+    spareEntries_.push_back(std::move(entry));
+  journal.entries.clear();
+  journal.delta = 0;
+  journal.moves = 0;
 }
 
 void DeepEdgeRemoval::undoTo(std::size_t mark, int delta)
 {
-  std::vector<TetId> tets;
+  std::vector<TetId>& tets = undoTets_;
   auto verticesOf = [this](TetId t) -> TetVertices {
     return { mesh_.vertex(t, 0), mesh_.vertex(t, 1), mesh_.vertex(t, 2), mesh_.vertex(t, 3) };
   };
@@ -73,6 +89,7 @@ void DeepEdgeRemoval::undoTo(std::size_t mark, int delta)
     replaceTets(mesh_, index_, tets, entry.old, &restoredScratch_);
     for (std::size_t i = 0; i < entry.old.size(); ++i)
       restoredIds_.assign(entry.old[i], restoredScratch_[i]);
+    spareEntries_.push_back(std::move(journal.entries.back()));
     journal.entries.pop_back();
   }
   if (journal.entries.empty())
@@ -144,9 +161,18 @@ bool DeepEdgeRemoval::remove(VertexId p, VertexId q, int level, const FlipCost& 
 {
   // Rings longer than this are left alone (TetGen limits its flip star the same way).
   constexpr int kMaxRing = 10;
-  std::vector<TetId> shell;
-  std::vector<VertexId> ring;
-  FlipCandidate move, best;
+  if (levels_.size() == depth_)
+    levels_.emplace_back();
+  Level& scratch = levels_[depth_];
+  struct DepthGuard
+  {
+    std::size_t& depth;
+    ~DepthGuard() { --depth; }
+  } depthGuard{ ++depth_ };
+  std::vector<TetId>& shell = scratch.shell;
+  std::vector<VertexId>& ring = scratch.ring;
+  FlipCandidate& move = scratch.move;
+  FlipCandidate& best = scratch.best;
   auto positive = [this](VertexId a, VertexId b, VertexId c, VertexId d)
   {
     return predicates::orient3dFiltered(
@@ -206,11 +232,11 @@ bool DeepEdgeRemoval::remove(VertexId p, VertexId q, int level, const FlipCost& 
     // (p,q,u,r) and (p,q,r,w), positive; its 2-3 flip makes (p,q,u,w), (w,q,u,r) and
     // (p,w,u,r), and a non-positive one of the last two names the blocking edge, (q,r) or
     // (p,r). Only that one is tried, not every edge to the ring.
+    // (The deeper removals walk shells into their own level's scratch: ring stays.)
     bool progressed = false;
-    const std::vector<VertexId> ringCopy = ring;
     for (int k = 0; k < n && !progressed && budget > 0; ++k)
     {
-      const VertexId u = ringCopy[(k + n - 1) % n], r = ringCopy[k], w = ringCopy[(k + 1) % n];
+      const VertexId u = ring[(k + n - 1) % n], r = ring[k], w = ring[(k + 1) % n];
       if (!positive(p, q, u, w))
         continue;
       for (VertexId end : { q, p })

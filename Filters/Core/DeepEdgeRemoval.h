@@ -9,6 +9,7 @@
 #include "EpochHashTable.h"
 #include "Flips.h"
 
+#include <deque>
 #include <functional>
 #include <vector>
 
@@ -44,6 +45,9 @@ public:
   bool remove(VertexId p, VertexId q, int level, const FlipCost& cost, int& budget);
   // Undoes the moves after the first `mark` entries and sets the journal's delta.
   void undoTo(std::size_t mark, int delta);
+  // Empties the journal (for a new attempt, or to keep the moves made), keeping the entries'
+  // buffers for the next moves.
+  void resetJournal();
 
   Journal journal;
   // When set, collects the vertices of every shell examined (to tell when a failed attempt
@@ -74,6 +78,19 @@ private:
   VertexTetIndex& index_;
   std::function<bool(VertexId, VertexId)> fixedEdge_;
   std::vector<TetId> star_;
+  // Scratch kept between calls (no allocation per move or shell): journal entries no longer
+  // in the journal, and remove's vectors per recursion depth (a deque: references to a
+  // shallower level's stay valid while a deeper one is added).
+  std::vector<JournalEntry> spareEntries_;
+  struct Level
+  {
+    std::vector<TetId> shell;
+    std::vector<VertexId> ring;
+    FlipCandidate move, best;
+  };
+  std::deque<Level> levels_;
+  std::size_t depth_ = 0;
+  std::vector<TetId> undoTets_;
   struct RememberedRemoval
   {
     std::vector<VertexId> key; // p, q, then the ring

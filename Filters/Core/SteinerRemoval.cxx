@@ -227,7 +227,7 @@ bool removeOneEdgeDeep(TetMesh& mesh,
     if (attempts <= 0)
       return false;
     --attempts;
-    deep.journal = {};
+    deep.resetJournal();
     int budget = kBudget;
     if (deep.remove(v, w, kLevels, noCost, budget))
     {
@@ -236,7 +236,7 @@ bool removeOneEdgeDeep(TetMesh& mesh,
       {
         for (const auto& entry : deep.journal.entries)
           changes.note(entry.created);
-        deep.journal = {};
+        deep.resetJournal();
         return true;
       }
     }
