@@ -136,7 +136,42 @@ bool edgeRemovalCandidate(const TetMesh& mesh,
   }
 
   // Ring triangles (i<j<k) give the tets (ri,rj,rk,q) and (rj,ri,rk,p), both positive when
-  // the triangle separates p from q properly.
+  // the triangle separates p from q properly. Whether they are, by triangle (-1: not tested).
+  thread_local std::vector<signed char> splits;
+  splits.assign(static_cast<std::size_t>(n) * n * n, -1);
+  auto splitsPositive = [&](int i, int j, int k)
+  {
+    signed char& known = splits[(static_cast<std::size_t>(i) * n + j) * n + k];
+    if (known < 0)
+      known = positive(mesh, { ring[i], ring[j], ring[k], q }) &&
+        positive(mesh, { ring[j], ring[i], ring[k], p });
+    return known == 1;
+  };
+  // Most shells priced have no valid triangulation (anchor.off: 2 of 3): find that out by
+  // orientations alone before pricing any tet. triangulable(i, k): the sub-polygon i..k has
+  // a triangulation of positive splits (a pair of ring neighbours trivially has).
+  thread_local std::vector<char> triangulable;
+  triangulable.assign(static_cast<std::size_t>(n) * n, 0);
+  auto canSplit = [&](int i, int k)
+  { return k - i < 2 || triangulable[static_cast<std::size_t>(i) * n + k]; };
+  for (int span = 2; span < n; ++span)
+  {
+    for (int i = 0; i + span < n; ++i)
+    {
+      const int k = i + span;
+      for (int j = i + 1; j < k; ++j)
+      {
+        if (canSplit(i, j) && canSplit(j, k) && splitsPositive(i, j, k))
+        {
+          triangulable[static_cast<std::size_t>(i) * n + k] = 1;
+          break;
+        }
+      }
+    }
+  }
+  if (!canSplit(0, n - 1))
+    return false;
+
   struct Score
   {
     int cost = std::numeric_limits<int>::max();
@@ -188,10 +223,10 @@ bool edgeRemovalCandidate(const TetMesh& mesh,
         const Score& current = at(i, k);
         if (c < 0 || (current.valid() && c > current.cost))
           continue;
+        if (!splitsPositive(i, j, k))
+          continue;
         TetVertices upper = { ring[i], ring[j], ring[k], q };
         TetVertices lower = { ring[j], ring[i], ring[k], p };
-        if (!positive(mesh, upper) || !positive(mesh, lower))
-          continue;
         c += priceTet(cost, upper) + priceTet(cost, lower) +
           priceFace(cost, ring[i], ring[j], ring[k]);
         if (current.valid() && c > current.cost)
