@@ -597,7 +597,7 @@ bool Recovery::cachedEdgeRemoval(TetId t,
   if (!entry.built)
   {
     entry.built = true;
-    entry.ok = edgeRemovalCandidate(mesh_, t, p, q, cost, entry.candidate);
+    entry.ok = edgeRemovalCandidate(mesh_, p, q, entry.shell, entry.ring, cost, entry.candidate);
   }
   if (entry.ok)
     out = entry.candidate;

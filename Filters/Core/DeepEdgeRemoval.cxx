@@ -103,8 +103,7 @@ void DeepEdgeRemoval::forgetCandidates()
   rememberedCount_ = 0; // the entries keep their vectors for reuse
 }
 
-bool DeepEdgeRemoval::removalCandidate(TetId t,
-  VertexId p,
+bool DeepEdgeRemoval::removalCandidate(VertexId p,
   VertexId q,
   const std::vector<TetId>& shell,
   const std::vector<VertexId>& ring,
@@ -112,7 +111,7 @@ bool DeepEdgeRemoval::removalCandidate(TetId t,
   FlipCandidate& out)
 {
   if (!memoizeCandidates)
-    return edgeRemovalCandidate(mesh_, t, p, q, cost, out);
+    return edgeRemovalCandidate(mesh_, p, q, shell, ring, cost, out);
   std::vector<VertexId>& key = keyScratch_;
   key.assign({ p, q });
   key.insert(key.end(), ring.begin(), ring.end());
@@ -131,11 +130,11 @@ bool DeepEdgeRemoval::removalCandidate(TetId t,
       out.oldCost = entry.candidate.oldCost;
       out.newCost = entry.candidate.newCost;
       out.minQuality = entry.candidate.minQuality;
-      out.oldTets = shell; // what edgeRemovalCandidate walks from t too
+      out.oldTets = shell; // as edgeRemovalCandidate gives
     }
     return entry.ok;
   }
-  const bool ok = edgeRemovalCandidate(mesh_, t, p, q, cost, out);
+  const bool ok = edgeRemovalCandidate(mesh_, p, q, shell, ring, cost, out);
   if (rememberedCount_ == remembered_.size())
     remembered_.emplace_back();
   const auto index = static_cast<std::int32_t>(rememberedCount_++);
@@ -201,7 +200,7 @@ bool DeepEdgeRemoval::remove(VertexId p, VertexId q, int level, const FlipCost& 
         return false;
     }
     --budget;
-    if (removalCandidate(t, p, q, shell, ring, cost, move) && move.newCost <= move.oldCost)
+    if (removalCandidate(p, q, shell, ring, cost, move) && move.newCost <= move.oldCost)
     {
       apply(move);
       return true;

@@ -64,10 +64,9 @@ public:
 
 private:
   void apply(const FlipCandidate& move);
-  // edgeRemovalCandidate for the shell and ring of (p,q) walked from t, remembered when
-  // memoizeCandidates is set.
-  bool removalCandidate(TetId t,
-    VertexId p,
+  // edgeRemovalCandidate for the shell and ring of (p,q) (as edgeShell walks them), remembered
+  // when memoizeCandidates is set.
+  bool removalCandidate(VertexId p,
     VertexId q,
     const std::vector<TetId>& shell,
     const std::vector<VertexId>& ring,

@@ -120,8 +120,19 @@ bool edgeRemovalCandidate(const TetMesh& mesh,
   // Scratch reused between calls (this runs for every edge of every flip search).
   thread_local std::vector<TetId> shell;
   thread_local std::vector<VertexId> ring;
-  if (!edgeShell(mesh, t, p, q, shell, ring))
-    return false;
+  return edgeShell(mesh, t, p, q, shell, ring) &&
+    edgeRemovalCandidate(mesh, p, q, shell, ring, cost, out, maxRing);
+}
+
+bool edgeRemovalCandidate(const TetMesh& mesh,
+  VertexId p,
+  VertexId q,
+  const std::vector<TetId>& shell,
+  const std::vector<VertexId>& ring,
+  const FlipCost& cost,
+  FlipCandidate& out,
+  int maxRing)
+{
   const int n = static_cast<int>(ring.size());
   if (n < 3 || n > maxRing)
     return false;

@@ -54,5 +54,15 @@ bool edgeRemovalCandidate(const TetMesh& mesh,
   const FlipCost& cost,
   FlipCandidate& out,
   int maxRing = 24);
+// The same for the shell and ring of (p,q) that edgeShell walked (closed), for callers that
+// have them already.
+bool edgeRemovalCandidate(const TetMesh& mesh,
+  VertexId p,
+  VertexId q,
+  const std::vector<TetId>& shell,
+  const std::vector<VertexId>& ring,
+  const FlipCost& cost,
+  FlipCandidate& out,
+  int maxRing = 24);
 
 } // namespace tetmesher
