@@ -120,14 +120,15 @@ struct ItemCost : FlipCost
   VertexId segment[2] = { -1, -1 };
 };
 
-// True when the points of `ids` all lie on one side of `box` along some axis: strictly
-// (open = false), or possibly on its boundary too (open = true, for an open set such as a
-// tet interior, whose coordinates never reach its own bounding box).
+// True when the open set that the points of `ids` span misses `box`, as they all lie on or
+// beyond one side of it: a tet's interior (tetInterior) then does (a flat tet, all on the
+// side, has none), and so does an open triangle or segment with one point strictly beyond,
+// since each of its points weighs every vertex.
 template<std::size_t N>
 bool separatedFromBox(const TetMesh& mesh,
   const std::array<double, 6>& box,
   const std::array<VertexId, N>& ids,
-  bool open)
+  bool tetInterior)
 {
   for (int k = 0; k < 3; ++k)
   {
@@ -137,7 +138,8 @@ bool separatedFromBox(const TetMesh& mesh,
       lo = std::min(lo, mesh.point(ids[i])[k]);
       hi = std::max(hi, mesh.point(ids[i])[k]);
     }
-    if (open ? (hi <= box[k] || lo >= box[k + 3]) : (hi < box[k] || lo > box[k + 3]))
+    if (tetInterior ? (hi <= box[k] || lo >= box[k + 3])
+                    : ((hi <= box[k] && lo < box[k]) || (lo >= box[k + 3] && hi > box[k + 3])))
       return true;
   }
   return false;
@@ -151,7 +153,9 @@ using ScratchSet = EpochHashTable<Key, std::uint8_t, TupleHash>;
 // prices the same entities again and again (every move rescans its pipe, every edge removal
 // prices all ring triangulations). All three tests are symmetric in their vertices. Entities
 // separated from the item's box score 0 before the look-up (the tests count tet interiors,
-// open triangles and open segments, so only separation counts, not touching boxes).
+// open triangles and open segments, which miss the item when they miss its box; a face or
+// edge with a vertex on the plane of a flat item, common on CAD parts, is separated when its
+// other vertices lie beyond that plane).
 // `caches` must be empty; the measure keeps it alive.
 FlipCost memoized(const ItemCost& base, const TetMesh& mesh, std::shared_ptr<MemoCaches> caches)
 {
