@@ -4,7 +4,10 @@
 #include "Predicates.h"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <iterator>
+#include <vector>
 
 namespace tetmesher
 {
@@ -239,6 +242,71 @@ bool simplexMeetsTetInterior(const double* const* points, int count, const doubl
   return simplexMeetsTetInteriorBySeparation(points, count, t);
 }
 
+namespace
+{
+// The planes simplexMeetsTetInteriorBySeparation tries for n = 4 + count points (tet
+// vertices first), in its order: the tet's faces, then the planes through a point of the
+// simplex, each through points i < j < k, with the other points m in increasing order and
+// which 4-point set orient3d(i, j, k, m) is, up to the parity of sorting it.
+struct SeparationPlanes
+{
+  struct Point
+  {
+    std::uint8_t subset; // index into subsets
+    bool odd;            // orient3d(i, j, k, m) is minus the subset's orientation
+    bool simplex;        // m is a point of the simplex
+  };
+  struct Plane
+  {
+    int count = 0;
+    Point others[4];
+  };
+  std::vector<Plane> planes;
+  std::vector<std::array<std::uint8_t, 4>> subsets; // increasing indices
+
+  explicit SeparationPlanes(int n)
+  {
+    std::uint8_t subsetOfMask[128]; // by the set's bitmask; 0xff: none yet
+    std::fill(std::begin(subsetOfMask), std::end(subsetOfMask), std::uint8_t(0xff));
+    for (int pass = 0; pass < 2; ++pass)
+      for (int i = 0; i < n; ++i)
+        for (int j = i + 1; j < n; ++j)
+          for (int k = j + 1; k < n; ++k)
+          {
+            if ((k < 4) != (pass == 0))
+              continue;
+            Plane plane;
+            for (int m = 0; m < n; ++m)
+            {
+              if (m == i || m == j || m == k)
+                continue; // on the plane by construction
+              const int mask = (1 << i) | (1 << j) | (1 << k) | (1 << m);
+              if (subsetOfMask[mask] == 0xff)
+              {
+                subsetOfMask[mask] = static_cast<std::uint8_t>(subsets.size());
+                std::array<std::uint8_t, 4> sorted{};
+                for (int b = 0, e = 0; b < n; ++b)
+                  if (mask & (1 << b))
+                    sorted[e++] = static_cast<std::uint8_t>(b);
+                subsets.push_back(sorted);
+              }
+              // m moves past the indices above it: one transposition each.
+              plane.others[plane.count++] = {
+                subsetOfMask[mask], ((i > m) + (j > m) + (k > m)) % 2 == 1, m >= 4
+              };
+            }
+            planes.push_back(plane);
+          }
+  }
+};
+
+const SeparationPlanes& separationPlanes(int n)
+{
+  static const SeparationPlanes segment(6), triangle(7);
+  return n == 6 ? segment : triangle;
+}
+} // namespace
+
 bool simplexMeetsTetInteriorBySeparation(const double* const* points,
   int count,
   const double* const t[4])
@@ -265,59 +333,40 @@ bool simplexMeetsTetInteriorBySeparation(const double* const* points,
   for (int i = 0; i < count; ++i)
     all[4 + i] = points[i];
   // The planes test up to 140 orientations but only 35 distinct point sets: each sign is
-  // computed once, in increasing index order, by the set's bitmask (2: not yet). The signs
-  // are exact, so a permutation only multiplies them by its parity.
-  signed char signs[128];
+  // computed once (2: not yet), in the set's increasing index order. The signs are exact,
+  // so a permutation only multiplies them by its parity.
+  const SeparationPlanes& planes = separationPlanes(n);
+  signed char signs[35];
   std::fill(std::begin(signs), std::end(signs), static_cast<signed char>(2));
-  // orient3d(all[i], all[j], all[k], all[m]) for i < j < k.
-  auto orientation = [&](int i, int j, int k, int m)
+  for (const SeparationPlanes::Plane& plane : planes.planes)
   {
-    signed char& sign = signs[(1 << i) | (1 << j) | (1 << k) | (1 << m)];
-    if (sign == 2)
+    int simplexSide = 0;
+    int tetSide = 0;
+    bool separates = true;
+    bool degenerate = true;
+    for (int e = 0; e < plane.count && separates; ++e)
     {
-      sign = static_cast<signed char>(m < i ? orient3d(all[m], all[i], all[j], all[k])
-          : m < j                           ? orient3d(all[i], all[m], all[j], all[k])
-          : m < k                           ? orient3d(all[i], all[j], all[m], all[k])
-                                            : orient3d(all[i], all[j], all[k], all[m]));
-    }
-    // m moves past the indices above it: one transposition each.
-    return ((i > m) + (j > m) + (k > m)) % 2 == 0 ? sign : -sign;
-  };
-  for (int pass = 0; pass < 2; ++pass)
-  {
-    for (int i = 0; i < n; ++i)
-    {
-      for (int j = i + 1; j < n; ++j)
+      const SeparationPlanes::Point& point = plane.others[e];
+      signed char& sign = signs[point.subset];
+      if (sign == 2)
       {
-        for (int k = j + 1; k < n; ++k)
-        {
-          if ((k < 4) != (pass == 0))
-            continue;
-          int simplexSide = 0;
-          int tetSide = 0;
-          bool separates = true;
-          bool degenerate = true;
-          for (int m = 0; m < n && separates; ++m)
-          {
-            if (m == i || m == j || m == k)
-              continue; // on the plane by construction
-            const int s = orientation(i, j, k, m);
-            if (s == 0)
-              continue;
-            degenerate = false;
-            int& side = m >= 4 ? simplexSide : tetSide;
-            if (side == 0)
-              side = s;
-            else if (side != s)
-              separates = false;
-          }
-          if (degenerate || !separates)
-            continue;
-          if (simplexSide == 0 || tetSide == 0 || simplexSide != tetSide)
-            return false;
-        }
+        const std::uint8_t* v = planes.subsets[point.subset].data();
+        sign = static_cast<signed char>(orient3d(all[v[0]], all[v[1]], all[v[2]], all[v[3]]));
       }
+      const int s = point.odd ? -sign : sign;
+      if (s == 0)
+        continue;
+      degenerate = false;
+      int& side = point.simplex ? simplexSide : tetSide;
+      if (side == 0)
+        side = s;
+      else if (side != s)
+        separates = false;
     }
+    if (degenerate || !separates)
+      continue;
+    if (simplexSide == 0 || tetSide == 0 || simplexSide != tetSide)
+      return false;
   }
   return true;
 }
