@@ -108,8 +108,10 @@ bool DeepEdgeRemoval::removalCandidate(VertexId p,
   const std::vector<TetId>& shell,
   const std::vector<VertexId>& ring,
   const FlipCost& cost,
-  FlipCandidate& out)
+  FlipCandidate& out,
+  std::int32_t& remembered)
 {
+  remembered = -1;
   if (!memoizeCandidates)
     return edgeRemovalCandidate(mesh_, p, q, shell, ring, cost, out);
   std::vector<VertexId>& key = keyScratch_;
@@ -124,6 +126,7 @@ bool DeepEdgeRemoval::removalCandidate(VertexId p,
     const RememberedRemoval& entry = remembered_[e];
     if (entry.key != key)
       continue;
+    remembered = e;
     if (entry.ok)
     {
       out.newTets = entry.candidate.newTets;
@@ -139,8 +142,10 @@ bool DeepEdgeRemoval::removalCandidate(VertexId p,
     remembered_.emplace_back();
   const auto index = static_cast<std::int32_t>(rememberedCount_++);
   RememberedRemoval& entry = remembered_[index];
+  remembered = index;
   entry.key = key;
   entry.ok = ok;
+  entry.flipShell.clear();
   if (ok)
   {
     entry.candidate.newTets = out.newTets;
@@ -154,6 +159,61 @@ bool DeepEdgeRemoval::removalCandidate(VertexId p,
   else
     rememberedByHash_.insert(hash, index);
   return ok;
+}
+
+bool DeepEdgeRemoval::bestFlip(const std::vector<TetId>& shell,
+  const std::vector<VertexId>& ring,
+  const FlipCost& cost,
+  std::int32_t remembered,
+  FlipCandidate& move,
+  FlipCandidate& best)
+{
+  const int n = static_cast<int>(ring.size());
+  std::vector<VertexId>& tets = shellScratch_;
+  if (remembered >= 0)
+  {
+    tets.clear();
+    for (TetId s : shell)
+      tets.insert(tets.end(),
+        &mesh_.tets[4 * static_cast<std::size_t>(s)],
+        &mesh_.tets[4 * static_cast<std::size_t>(s)] + 4);
+    const RememberedRemoval& entry = remembered_[remembered];
+    if (entry.flipShell == tets)
+    {
+      if (entry.flip < 0)
+        return false;
+      best.newTets = entry.flipCandidate.newTets;
+      best.oldCost = entry.flipCandidate.oldCost;
+      best.newCost = entry.flipCandidate.newCost;
+      best.minQuality = entry.flipCandidate.minQuality;
+      best.oldTets = { shell[entry.flip], shell[(entry.flip + n - 1) % n] }; // as flip23Candidate
+      return true;
+    }
+  }
+  // A 2-3 flip of face (p,q,ring[k]) takes ring[k] out of the ring: the best that does not
+  // raise the measure.
+  int found = -1;
+  for (int k = 0; k < n; ++k)
+  {
+    TetId s = shell[k];
+    if (!flip23Candidate(mesh_, s, localIndex(mesh_, s, ring[(k + 1) % n]), cost, move) ||
+      move.newCost > move.oldCost)
+      continue;
+    if (found < 0 || betterMove(move, best))
+    {
+      best = move;
+      found = k;
+    }
+  }
+  if (remembered >= 0)
+  {
+    RememberedRemoval& entry = remembered_[remembered];
+    entry.flipShell = tets;
+    entry.flip = found;
+    if (found >= 0)
+      entry.flipCandidate = best;
+  }
+  return found >= 0;
 }
 
 bool DeepEdgeRemoval::remove(VertexId p, VertexId q, int level, const FlipCost& cost, int& budget)
@@ -200,27 +260,13 @@ bool DeepEdgeRemoval::remove(VertexId p, VertexId q, int level, const FlipCost& 
         return false;
     }
     --budget;
-    if (removalCandidate(p, q, shell, ring, cost, move) && move.newCost <= move.oldCost)
+    std::int32_t remembered = -1;
+    if (removalCandidate(p, q, shell, ring, cost, move, remembered) && move.newCost <= move.oldCost)
     {
       apply(move);
       return true;
     }
-    // A 2-3 flip of face (p,q,ring[k]) takes ring[k] out of the ring: the best that does not
-    // raise the measure.
-    bool found = false;
-    for (int k = 0; k < n; ++k)
-    {
-      TetId s = shell[k];
-      if (!flip23Candidate(mesh_, s, localIndex(mesh_, s, ring[(k + 1) % n]), cost, move) ||
-        move.newCost > move.oldCost)
-        continue;
-      if (!found || betterMove(move, best))
-      {
-        best = move;
-        found = true;
-      }
-    }
-    if (found)
+    if (bestFlip(shell, ring, cost, remembered, move, best))
     {
       apply(best);
       continue;

@@ -65,13 +65,22 @@ public:
 private:
   void apply(const FlipCandidate& move);
   // edgeRemovalCandidate for the shell and ring of (p,q) (as edgeShell walks them), remembered
-  // when memoizeCandidates is set.
+  // when memoizeCandidates is set; `remembered` is then the entry's index (else -1).
   bool removalCandidate(VertexId p,
     VertexId q,
     const std::vector<TetId>& shell,
     const std::vector<VertexId>& ring,
     const FlipCost& cost,
-    FlipCandidate& out);
+    FlipCandidate& out,
+    std::int32_t& remembered);
+  // The best 2-3 flip of a face around (p,q) that does not raise `cost` (false: none), with
+  // the answer remembered in entry `remembered` when that is not -1.
+  bool bestFlip(const std::vector<TetId>& shell,
+    const std::vector<VertexId>& ring,
+    const FlipCost& cost,
+    std::int32_t remembered,
+    FlipCandidate& move,
+    FlipCandidate& best);
 
   TetMesh& mesh_;
   VertexTetIndex& index_;
@@ -96,11 +105,17 @@ private:
     bool ok = false;
     FlipCandidate candidate; // without its old tets (their ids change)
     std::int32_t next = -1;  // the next entry of the same hash, or -1
+    // The best flip of bestFlip, for the shell whose tets' vertices (4 per tet, in order)
+    // are flipShell (empty: not computed): the new tets' vertex order follows the old tets',
+    // and the shapes that break ties follow that order. flip: its ring index, or -1 (none).
+    std::vector<VertexId> flipShell;
+    int flip = -1;
+    FlipCandidate flipCandidate; // without its old tets
   };
   EpochHashTable<std::uint64_t, std::int32_t, MixHash64> rememberedByHash_;
   std::vector<RememberedRemoval> remembered_; // the first rememberedCount_ are live
   std::size_t rememberedCount_ = 0;
-  std::vector<VertexId> keyScratch_;
+  std::vector<VertexId> keyScratch_, shellScratch_;
   struct TetVerticesHash
   {
     std::size_t operator()(const TetVertices& t) const
