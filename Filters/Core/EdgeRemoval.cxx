@@ -68,17 +68,19 @@ bool findEdgeRemoval(const Context& ctx, TetId t, VertexId p, VertexId q, LocalM
       return w;
     triStamp[at] = stamp;
     w.score = -1;
-    if (!ctx.positive(ring[i], ring[j], ring[k], q))
+    // Each tet's driving measure, then the other, then the exact signs: most triangles fail
+    // on the first, and the order of pure tests does not change the answer.
+    Context::Staged up(ctx, ring[i], ring[j], ring[k], q);
+    if (!usable(up.values()) || !usable(up.complete()))
       return w;
-    const TetEval up = ctx.eval(ring[i], ring[j], ring[k], q);
-    if (!usable(up) || !ctx.positive(ring[j], ring[i], ring[k], p))
+    Context::Staged down(ctx, ring[j], ring[i], ring[k], p);
+    if (!usable(down.values()) || !usable(down.complete()))
       return w;
-    const TetEval down = ctx.eval(ring[j], ring[i], ring[k], p);
-    if (!usable(down))
+    if (!ctx.positive(ring[i], ring[j], ring[k], q) || !ctx.positive(ring[j], ring[i], ring[k], p))
       return w;
     w = WorstOf();
-    w.add(up);
-    w.add(down);
+    w.add(up.values());
+    w.add(down.values());
     return w;
   };
   // Every triangulation of the ring has each ring edge in exactly one triangle, so a ring

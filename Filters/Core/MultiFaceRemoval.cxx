@@ -74,6 +74,17 @@ bool findMultiFaceRemoval(const Context& ctx, TetId t, int f, LocalMove& out)
         if (!onBoundary)
           return found;
       }
+    WorstOf oldMin;
+    for (const Sandwiched& F : faces)
+    {
+      oldMin.add(ctx.quality(F.ta));
+      oldMin.add(ctx.quality(F.tb));
+    }
+    // Every new tet's score (the growth below goes across the worst one), but its other
+    // measure only while the set can still be taken: once the scores' minimum is not above
+    // oldMin's and the best set's, the rule fails on the score whatever the rest.
+    auto canWin = [&](double minScore)
+    { return minScore > oldMin.score && (!found || minScore > out.newMin.score); };
     newTets.clear();
     WorstOf newMin;
     bool valid = true;
@@ -84,7 +95,18 @@ bool findMultiFaceRemoval(const Context& ctx, TetId t, int f, LocalMove& out)
       const Sandwiched& F = faces[edges[k].first];
       int e = edges[k].second;
       TetVertices nt = { F.v[e], F.v[(e + 1) % 3], b, a };
-      const double sc = ctx.scoreCandidate(nt, newMin, valid);
+      if (!ctx.positive(nt[0], nt[1], nt[2], nt[3]))
+      {
+        // Score -1, below any measured one: this is the worst tet, and the set is invalid.
+        valid = false;
+        worst = k;
+        break;
+      }
+      Context::Staged m(ctx, nt[0], nt[1], nt[2], nt[3]);
+      const double sc = m.values().score;
+      newMin.score = std::min(newMin.score, sc);
+      if (canWin(newMin.score))
+        newMin.add(m.complete());
       if (sc < worstScore)
       {
         worstScore = sc;
@@ -94,12 +116,6 @@ bool findMultiFaceRemoval(const Context& ctx, TetId t, int f, LocalMove& out)
     }
     if (valid)
     {
-      WorstOf oldMin;
-      for (const Sandwiched& F : faces)
-      {
-        oldMin.add(ctx.quality(F.ta));
-        oldMin.add(ctx.quality(F.tb));
-      }
       if (ctx.accept(newMin, oldMin) && (!found || newMin.score > out.newMin.score))
       {
         found = true;

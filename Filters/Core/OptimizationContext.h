@@ -72,98 +72,141 @@ struct WorstOf
 // measureTetForOptimization (TetQuality.h), inlined and without what the optimiser does not
 // use (the largest angle, the search for each edge's two faces): the optimiser's inner loops
 // are mostly this. The same arithmetic in the same order, so Q and the smallest dihedral
-// angle are the same bit for bit (the core is built with -ffp-contract=off; tested). Q and
-// the angle are 0 for a tet that is not positive in VTK's orientation; score is left 0.
+// angle are the same bit for bit (the core is built with -ffp-contract=off; tested).
+// In parts: the volume and the face normals, then Q and the angle each on demand, because
+// most of the optimiser's measures decide from the driving one alone (a rejected trial, a
+// gradient's difference). Each part is its own chain of operations, so computing one
+// without the other gives the same bits.
+class TetMeasure
+{
+public:
+  // Points in VTK's orientation; h: the sizes at a, b, c, d, or null.
+  TetMeasure(const double* a, const double* b, const double* c, const double* d, const double* h)
+    : p_{ a, b, c, d }
+    , h_(h)
+  {
+    // The edges from a (b - a, c - a, d - a), and the volume as measureRaw computes it.
+    double fromA[3][3], x[3];
+    for (int i = 0; i < 3; ++i)
+      sub(p_[i + 1], a, fromA[i]);
+    cross(fromA[1], fromA[2], x);
+    volume_ = dot(fromA[0], x) / 6.0;
+    if (!positive())
+      return;
+    for (int f = 0; f < 4; ++f)
+    {
+      double u[3], v[3];
+      sub(p_[kFaces[f][1]], p_[kFaces[f][0]], u);
+      sub(p_[kFaces[f][2]], p_[kFaces[f][0]], v);
+      cross(u, v, normal_[f]);
+      normalLength_[f] = std::sqrt(dot(normal_[f], normal_[f]));
+      areaSum_ += 0.5 * normalLength_[f];
+    }
+  }
+  // Q and the angle are 0 for a tet that is not positive in VTK's orientation.
+  bool positive() const { return volume_ > 0; }
+  double q() const
+  {
+    if (!positive())
+      return 0.0;
+    // With one h at the four vertices (a constant size field) the longest scaled edge is the
+    // longest edge over h: 0.5 * (l/h + l/h) is l/h exactly, and sqrt and division by h > 0
+    // are monotone, so sqrt(max l^2) / h is the same double as max(0.5 * (l/h + l/h)), for
+    // one square root and one division instead of six and twelve.
+    const double* h = h_;
+    const bool uniform = !h || (h[0] == h[1] && h[0] == h[2] && h[0] == h[3]);
+    double longest = 0.0, longestSquared = 0.0;
+    for (const auto& E : kEdge)
+    {
+      double u[3];
+      sub(p_[E[0]], p_[E[1]], u);
+      if (uniform)
+        longestSquared = std::max(longestSquared, dot(u, u));
+      else
+      {
+        const double l = std::sqrt(dot(u, u));
+        longest = std::max(longest, 0.5 * (l / h[E[0]] + l / h[E[1]]));
+      }
+    }
+    if (uniform)
+      longest = h ? std::sqrt(longestSquared) / h[0] : std::sqrt(longestSquared);
+    double inradius = areaSum_ > 0 ? 3.0 * volume_ / areaSum_ : 0.0;
+    if (h)
+    {
+      double inverseSum = 0.0;
+      if (uniform)
+      {
+        const double inverse = 1.0 / h[0];
+        inverseSum = ((inverse + inverse) + inverse) + inverse;
+      }
+      else
+        for (int i = 0; i < 4; ++i)
+          inverseSum += 1.0 / h[i];
+      inradius = inradius * inverseSum / 4.0;
+    }
+    return longest > 0 ? std::min(1.0, kQualityScale * inradius / longest) : 0.0;
+  }
+  // The cosine of the smallest dihedral angle (TetEval::dihCosine).
+  double dihCosine() const
+  {
+    if (!positive())
+      return -2.0;
+    double lowCosine = 2.0;
+    for (const auto& E : kEdge)
+    {
+      const double nk = normalLength_[E[2]], nl = normalLength_[E[3]];
+      if (!(nk > 0 && nl > 0))
+        return -2.0; // degenerate
+      lowCosine =
+        std::min(lowCosine, std::clamp(dot(normal_[E[2]], normal_[E[3]]) / (nk * nl), -1.0, 1.0));
+    }
+    return lowCosine;
+  }
+
+private:
+  static void sub(const double* u, const double* v, double* r)
+  {
+    r[0] = u[0] - v[0];
+    r[1] = u[1] - v[1];
+    r[2] = u[2] - v[2];
+  }
+  static void cross(const double* u, const double* v, double* r)
+  {
+    r[0] = u[1] * v[2] - u[2] * v[1];
+    r[1] = u[2] * v[0] - u[0] * v[2];
+    r[2] = u[0] * v[1] - u[1] * v[0];
+  }
+  static double dot(const double* u, const double* v)
+  {
+    return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+  }
+  static constexpr int kFaces[4][3] = { { 1, 2, 3 }, { 0, 3, 2 }, { 0, 1, 3 }, { 0, 2, 1 } };
+  // Edge (i,j) and the faces k < l opposite the other two vertices, as measureRaw orders them.
+  static constexpr int kEdge[6][4] = { { 0, 1, 2, 3 },
+    { 0, 2, 1, 3 },
+    { 0, 3, 1, 2 },
+    { 1, 2, 0, 3 },
+    { 1, 3, 0, 2 },
+    { 2, 3, 0, 1 } };
+
+  const double* p_[4];
+  const double* h_;
+  double volume_;
+  double normal_[4][3], normalLength_[4];
+  double areaSum_ = 0;
+};
+
+// The whole measure; score is left 0.
 inline TetEval measureForOptimization(const double* a,
   const double* b,
   const double* c,
   const double* d,
   const double* h)
 {
-  const double* p[4] = { a, b, c, d };
-  auto sub = [](const double* u, const double* v, double* r)
-  {
-    r[0] = u[0] - v[0];
-    r[1] = u[1] - v[1];
-    r[2] = u[2] - v[2];
-  };
-  auto cross = [](const double* u, const double* v, double* r)
-  {
-    r[0] = u[1] * v[2] - u[2] * v[1];
-    r[1] = u[2] * v[0] - u[0] * v[2];
-    r[2] = u[0] * v[1] - u[1] * v[0];
-  };
-  auto dot = [](const double* u, const double* v)
-  { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
-  // The edges from a (b - a, c - a, d - a), and the volume as measureRaw computes it.
-  double fromA[3][3], x[3];
-  for (int i = 0; i < 3; ++i)
-    sub(p[i + 1], a, fromA[i]);
-  cross(fromA[1], fromA[2], x);
-  const double volume = dot(fromA[0], x) / 6.0;
+  const TetMeasure m(a, b, c, d, h);
   TetEval e;
-  if (!(volume > 0))
-    return e;
-  static constexpr int kFaces[4][3] = { { 1, 2, 3 }, { 0, 3, 2 }, { 0, 1, 3 }, { 0, 2, 1 } };
-  double normal[4][3], normalLength[4];
-  double areaSum = 0;
-  for (int f = 0; f < 4; ++f)
-  {
-    double u[3], v[3];
-    sub(p[kFaces[f][1]], p[kFaces[f][0]], u);
-    sub(p[kFaces[f][2]], p[kFaces[f][0]], v);
-    cross(u, v, normal[f]);
-    normalLength[f] = std::sqrt(dot(normal[f], normal[f]));
-    areaSum += 0.5 * normalLength[f];
-  }
-  // Edge (i,j) and the faces k < l opposite the other two vertices, as measureRaw orders them.
-  static constexpr int kEdge[6][4] = {
-    { 0, 1, 2, 3 }, { 0, 2, 1, 3 }, { 0, 3, 1, 2 }, { 1, 2, 0, 3 }, { 1, 3, 0, 2 }, { 2, 3, 0, 1 }
-  };
-  // With one h at the four vertices (a constant size field) the longest scaled edge is the
-  // longest edge over h: 0.5 * (l/h + l/h) is l/h exactly, and sqrt and division by h > 0
-  // are monotone, so sqrt(max l^2) / h is the same double as max(0.5 * (l/h + l/h)), for
-  // one square root and one division instead of six and twelve.
-  const bool uniform = !h || (h[0] == h[1] && h[0] == h[2] && h[0] == h[3]);
-  double lowCosine = 2.0, longest = 0.0, longestSquared = 0.0;
-  bool degenerate = false;
-  for (const auto& E : kEdge)
-  {
-    double u[3];
-    sub(p[E[0]], p[E[1]], u);
-    if (uniform)
-      longestSquared = std::max(longestSquared, dot(u, u));
-    else
-    {
-      const double l = std::sqrt(dot(u, u));
-      longest = std::max(longest, 0.5 * (l / h[E[0]] + l / h[E[1]]));
-    }
-    const double nk = normalLength[E[2]], nl = normalLength[E[3]];
-    if (nk > 0 && nl > 0)
-      lowCosine =
-        std::min(lowCosine, std::clamp(dot(normal[E[2]], normal[E[3]]) / (nk * nl), -1.0, 1.0));
-    else
-      degenerate = true;
-  }
-  if (uniform)
-    longest = h ? std::sqrt(longestSquared) / h[0] : std::sqrt(longestSquared);
-  double inradius = areaSum > 0 ? 3.0 * volume / areaSum : 0.0;
-  if (h)
-  {
-    double inverseSum = 0.0;
-    if (uniform)
-    {
-      const double inverse = 1.0 / h[0];
-      inverseSum = ((inverse + inverse) + inverse) + inverse;
-    }
-    else
-      for (int i = 0; i < 4; ++i)
-        inverseSum += 1.0 / h[i];
-    inradius = inradius * inverseSum / 4.0;
-  }
-  e.dihCosine = degenerate ? -2.0 : lowCosine;
-  if (longest > 0)
-    e.q = std::min(1.0, kQualityScale * inradius / longest);
+  e.q = m.q();
+  e.dihCosine = m.dihCosine();
   return e;
 }
 
@@ -202,18 +245,59 @@ public:
   {
     // TetMesh tets are positive in Shewchuk's sign; the measure expects VTK's: swap a and b.
     double hh[4];
-    if (size)
-    {
-      const std::vector<double>& h = *size;
-      hh[0] = h[b];
-      hh[1] = h[a];
-      hh[2] = h[c];
-      hh[3] = h[d];
-    }
-    TetEval e = measureForOptimization(P(b), P(a), P(c), P(d), size ? hh : nullptr);
+    TetEval e = measureForOptimization(P(b), P(a), P(c), P(d), sizesOf(a, b, c, d, hh));
     e.score = scoreOf(e);
     return e;
   }
+  // eval() in two steps, for callers that reject most tets on the driving measure alone:
+  // values() are first the score and the driving measure, the other measure +inf (it passes
+  // any floor), and after complete() all of eval()'s.
+  class Staged
+  {
+  public:
+    Staged(const Context& ctx, VertexId a, VertexId b, VertexId c, VertexId d)
+      : m_(ctx.P(b), ctx.P(a), ctx.P(c), ctx.P(d), ctx.sizesOf(a, b, c, d, hh_))
+      , dihedral_(ctx.options.measure != QualityMeasure::PaperQ)
+    {
+      if (dihedral_)
+      {
+        e_.dihCosine = m_.dihCosine();
+        e_.score = dihedralScore(e_.dihCosine);
+        e_.q = kInf;
+      }
+      else
+      {
+        e_.q = m_.q();
+        e_.score = e_.q;
+        e_.dihCosine = kInf;
+      }
+    }
+    Staged(const Context& ctx, TetId t)
+      : Staged(ctx,
+          ctx.mesh.vertex(t, 0),
+          ctx.mesh.vertex(t, 1),
+          ctx.mesh.vertex(t, 2),
+          ctx.mesh.vertex(t, 3))
+    {
+    }
+    Staged(const Staged&) = delete; // m_ may point into hh_
+    Staged& operator=(const Staged&) = delete;
+    const TetEval& values() const { return e_; }
+    const TetEval& complete()
+    {
+      if (dihedral_)
+        e_.q = m_.q();
+      else
+        e_.dihCosine = m_.dihCosine();
+      return e_;
+    }
+
+  private:
+    double hh_[4];
+    TetMeasure m_;
+    bool dihedral_;
+    TetEval e_;
+  };
   TetEval eval(const TetVertices& t) const { return eval(t[0], t[1], t[2], t[3]); }
   TetEval evalTet(TetId t) const
   {
@@ -313,6 +397,19 @@ public:
   double floorQ = 0, floorDihCosine = -2;
 
 private:
+  // The sizes at a, b, c, d in the measure's order (eval) into hh; null without a size field.
+  const double* sizesOf(VertexId a, VertexId b, VertexId c, VertexId d, double* hh) const
+  {
+    if (!size)
+      return nullptr;
+    const std::vector<double>& h = *size;
+    hh[0] = h[b];
+    hh[1] = h[a];
+    hh[2] = h[c];
+    hh[3] = h[d];
+    return hh;
+  }
+
   mutable std::vector<TetEval> cache_;
   mutable std::vector<char> cacheValid_;
 };

@@ -58,17 +58,21 @@ bool tryPosition(const Context& ctx,
 {
   const double qFloor = std::min(old.q, ctx.floorQ);
   const double dihFloor = std::min(old.dihCosine, ctx.floorDihCosine);
+  auto breaksRule = [&](const TetEval& e)
+  { return !(e.score > scoreAbove) || e.q < qFloor || e.dihCosine < dihFloor; };
   now = WorstOf();
   for (std::size_t i : sc.order)
   {
+    // The driving measure first, then the other, then the exact sign: most trials fail on
+    // the first, and the order of pure tests does not change the answer.
     const TetId t = star[i];
-    if (!ctx.positive(ctx.mesh.vertex(t, 0),
-          ctx.mesh.vertex(t, 1),
-          ctx.mesh.vertex(t, 2),
-          ctx.mesh.vertex(t, 3)))
+    Context::Staged m(ctx, t);
+    if (breaksRule(m.values()))
       return false;
-    const TetEval e = ctx.evalTet(t);
-    if (!(e.score > scoreAbove) || e.q < qFloor || e.dihCosine < dihFloor)
+    const TetEval& e = m.complete();
+    if (breaksRule(e) ||
+      !ctx.positive(
+        ctx.mesh.vertex(t, 0), ctx.mesh.vertex(t, 1), ctx.mesh.vertex(t, 2), ctx.mesh.vertex(t, 3)))
       return false;
     sc.trialScore[i] = e.score;
     sc.trialEval[i] = e;
@@ -218,11 +222,12 @@ bool smoothVertex(Context& ctx, VertexId v, std::vector<TetId>& star)
       const TetId t = star[i];
       std::array<double, 3> g;
       // Forward differences from the score at cur (sc.score, measured there): one measure
-      // per axis instead of two, and eps is far below any step the search takes.
+      // per axis instead of two, and eps is far below any step the search takes. Of the
+      // measure only the driving part, which alone gives the score.
       for (int k = 0; k < 3; ++k)
       {
         x[k] = cur[k] + eps;
-        const double sp = ctx.evalTet(t).score;
+        const double sp = Context::Staged(ctx, t).values().score;
         x[k] = cur[k];
         g[k] = (sp - sc.score[i]) / eps;
       }
