@@ -1,7 +1,5 @@
 #include "MeshTopology.h"
 
-#include "SurfaceInput.h"
-
 #include <algorithm>
 #include <cassert>
 #include <cstdint>
@@ -23,14 +21,6 @@ void VertexTetIndex::rebuild(const TetMesh& mesh)
     for (int i = 0; i < 4; ++i)
       vertexTet_[tets[i]] = t;
   }
-}
-
-void VertexTetIndex::note(TetId t, const TetMesh& mesh)
-{
-  if (static_cast<VertexId>(vertexTet_.size()) < mesh.vertexCount())
-    vertexTet_.resize(mesh.vertexCount(), -1);
-  for (int i = 0; i < 4; ++i)
-    vertexTet_[mesh.vertex(t, i)] = t;
 }
 
 TetId VertexTetIndex::tetOf(const TetMesh& mesh, VertexId v)
@@ -211,51 +201,81 @@ void replaceTets(TetMesh& mesh,
   // recovery and optimisation spend on every move, made or undone. A boundary face matches
   // before an open one, and the first of equal boundary faces wins, as a linear search would
   // (equal faces only arise on broken meshes, e.g. unchecked self-intersecting input).
-  struct Face
+  // The faces live in the slots, which an epoch empties: no clearing and no indirection per
+  // call (this runs for every move, and undo, of the flip searches).
+  struct Slot
   {
-    std::array<VertexId, 3> key;
-    FaceRef outside;  // boundary: the face across (or kNoNeighbor); open: makeFaceRef(t, f)
-    bool constrained; // boundary only
+    VertexId key[3];
+    FaceRef outside;         // boundary: the face across (or kNoNeighbor); open: makeFaceRef(t, f)
+    std::uint32_t epoch = 0; // in use when equal to the call's epoch
     bool boundary;
+    bool constrained; // boundary only
   };
-  // Element-wise (std::array's == becomes a memcmp call here).
-  auto same = [](const std::array<VertexId, 3>& x, const std::array<VertexId, 3>& y)
-  { return x[0] == y[0] && x[1] == y[1] && x[2] == y[2]; };
-  // Scratch kept between calls: recovery and optimisation call this for every move.
-  thread_local std::vector<Face> faces;
-  thread_local std::vector<std::int32_t> slots; // index into faces, -1: empty
-  faces.clear();
+  thread_local std::vector<Slot> slots;
+  // Old tets by id (the call's epoch): a neighbour in the region is not on its boundary.
+  thread_local std::vector<std::uint32_t> oldMark;
+  thread_local std::uint32_t epoch = 0;
   std::size_t size = 16;
   while (size < 2 * 4 * (oldTets.size() + newTets.size()))
     size *= 2;
-  slots.assign(size, -1);
-  const std::size_t mask = size - 1;
-  // The slot of `key`: the one holding it, else the empty one where it would go.
-  auto slotOf = [&](const std::array<VertexId, 3>& key) -> std::int32_t&
+  if (slots.size() < size)
+    slots.resize(size);
+  if (oldMark.size() < static_cast<std::size_t>(mesh.tetCapacity()))
+    oldMark.resize(2 * static_cast<std::size_t>(mesh.tetCapacity()), 0);
+  if (++epoch == 0)
   {
-    std::uint64_t h = static_cast<std::uint32_t>(key[0]) * 0x9e3779b97f4a7c15ull ^
-      static_cast<std::uint32_t>(key[1]) * 0xc2b2ae3d27d4eb4full ^
-      static_cast<std::uint32_t>(key[2]) * 0x165667b19e3779f9ull;
+    for (Slot& slot : slots)
+      slot.epoch = 0;
+    std::fill(oldMark.begin(), oldMark.end(), 0u);
+    epoch = 1;
+  }
+  const std::uint32_t now = epoch;
+  const std::size_t mask = size - 1;
+  // The slot of face (a,b,c): the one holding it, else the empty one where it would go.
+  auto slotOf = [&](VertexId a, VertexId b, VertexId c) -> Slot&
+  {
+    if (b < a)
+      std::swap(a, b);
+    if (c < b)
+      std::swap(b, c);
+    if (b < a)
+      std::swap(a, b);
+    std::uint64_t h = static_cast<std::uint32_t>(a) * 0x9e3779b97f4a7c15ull ^
+      static_cast<std::uint32_t>(b) * 0xc2b2ae3d27d4eb4full ^
+      static_cast<std::uint32_t>(c) * 0x165667b19e3779f9ull;
     for (std::size_t i = (h ^ (h >> 29)) & mask;; i = (i + 1) & mask)
-      if (slots[i] < 0 || same(faces[slots[i]].key, key))
-        return slots[i];
+    {
+      Slot& slot = slots[i];
+      if (slot.epoch != now)
+      {
+        slot.key[0] = a;
+        slot.key[1] = b;
+        slot.key[2] = c;
+        return slot;
+      }
+      if (slot.key[0] == a && slot.key[1] == b && slot.key[2] == c)
+        return slot;
+    }
   };
   for (TetId t : oldTets)
+    oldMark[t] = now;
+  for (TetId t : oldTets)
   {
+    const VertexId* v = &mesh.tets[4 * static_cast<std::size_t>(t)];
     for (int f = 0; f < 4; ++f)
     {
       FaceRef n = mesh.neighbor(t, f);
-      if (n != kNoNeighbor &&
-        std::find(oldTets.begin(), oldTets.end(), faceTet(n)) != oldTets.end())
+      if (n != kNoNeighbor && static_cast<std::size_t>(faceTet(n)) < oldMark.size() &&
+        oldMark[faceTet(n)] == now)
         continue;
       const int* fv = kFaceVertices[f];
-      const auto key =
-        sortedTriangle(mesh.vertex(t, fv[0]), mesh.vertex(t, fv[1]), mesh.vertex(t, fv[2]));
-      std::int32_t& slot = slotOf(key);
-      if (slot < 0)
+      Slot& slot = slotOf(v[fv[0]], v[fv[1]], v[fv[2]]);
+      if (slot.epoch != now)
       {
-        slot = static_cast<std::int32_t>(faces.size());
-        faces.push_back({ key, n, mesh.isConstrained(t, f), true });
+        slot.epoch = now;
+        slot.outside = n;
+        slot.boundary = true;
+        slot.constrained = mesh.isConstrained(t, f);
       }
     }
   }
@@ -272,32 +292,31 @@ void replaceTets(TetMesh& mesh,
     for (int f = 0; f < 4; ++f)
     {
       const int* fv = kFaceVertices[f];
-      const auto key = sortedTriangle(v[fv[0]], v[fv[1]], v[fv[2]]);
-      std::int32_t& slot = slotOf(key);
-      Face* face = slot < 0 ? nullptr : &faces[slot];
-      if (face && face->boundary)
+      Slot& slot = slotOf(v[fv[0]], v[fv[1]], v[fv[2]]);
+      if (slot.epoch != now)
       {
-        if (face->outside == kNoNeighbor)
+        slot.epoch = now;
+        slot.outside = makeFaceRef(t, f);
+        slot.boundary = false;
+        ++openCount;
+      }
+      else if (slot.boundary)
+      {
+        if (slot.outside == kNoNeighbor)
           mesh.setHull(t, f);
         else
-          mesh.glue(t, f, faceTet(face->outside), faceIndex(face->outside));
-        mesh.setConstrained(t, f, face->constrained);
+          mesh.glue(t, f, faceTet(slot.outside), faceIndex(slot.outside));
+        mesh.setConstrained(t, f, slot.constrained);
       }
-      else if (face && face->outside != kNoNeighbor)
+      else if (slot.outside != kNoNeighbor)
       {
-        mesh.glue(t, f, faceTet(face->outside), faceIndex(face->outside));
-        face->outside = kNoNeighbor; // glued: the slot stays, free for a later equal face
+        mesh.glue(t, f, faceTet(slot.outside), faceIndex(slot.outside));
+        slot.outside = kNoNeighbor; // glued: the slot stays, free for a later equal face
         --openCount;
       }
       else
       {
-        if (face)
-          face->outside = makeFaceRef(t, f);
-        else
-        {
-          slot = static_cast<std::int32_t>(faces.size());
-          faces.push_back({ key, makeFaceRef(t, f), false, false });
-        }
+        slot.outside = makeFaceRef(t, f);
         ++openCount;
       }
     }

@@ -22,7 +22,14 @@ public:
   void rebuild(const TetMesh& mesh);
   // A live tet incident to v, or -1 when v is in no tet (e.g. a duplicate point).
   TetId tetOf(const TetMesh& mesh, VertexId v);
-  void note(TetId t, const TetMesh& mesh);
+  // Inline: every new tet of every move (made or undone) is noted.
+  void note(TetId t, const TetMesh& mesh)
+  {
+    if (static_cast<VertexId>(vertexTet_.size()) < mesh.vertexCount())
+      vertexTet_.resize(mesh.vertexCount(), -1);
+    for (int i = 0; i < 4; ++i)
+      vertexTet_[mesh.vertex(t, i)] = t;
+  }
 
   // Visit marks for one traversal at a time (stamps, so starting one is O(1)). Inline: the
   // flip searches walk stars and shells all the time.
