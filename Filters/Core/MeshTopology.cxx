@@ -1,5 +1,7 @@
 #include "MeshTopology.h"
 
+#include "SurfaceInput.h"
+
 #include <algorithm>
 #include <cassert>
 #include <cstdint>
@@ -234,26 +236,19 @@ void replaceTets(TetMesh& mesh,
   // The slot of face (a,b,c): the one holding it, else the empty one where it would go.
   auto slotOf = [&](VertexId a, VertexId b, VertexId c) -> Slot&
   {
-    if (b < a)
-      std::swap(a, b);
-    if (c < b)
-      std::swap(b, c);
-    if (b < a)
-      std::swap(a, b);
-    std::uint64_t h = static_cast<std::uint32_t>(a) * 0x9e3779b97f4a7c15ull ^
-      static_cast<std::uint32_t>(b) * 0xc2b2ae3d27d4eb4full ^
-      static_cast<std::uint32_t>(c) * 0x165667b19e3779f9ull;
+    const std::array<VertexId, 3> key = sortedTriangle(a, b, c);
+    std::uint64_t h = static_cast<std::uint32_t>(key[0]) * 0x9e3779b97f4a7c15ull ^
+      static_cast<std::uint32_t>(key[1]) * 0xc2b2ae3d27d4eb4full ^
+      static_cast<std::uint32_t>(key[2]) * 0x165667b19e3779f9ull;
     for (std::size_t i = (h ^ (h >> 29)) & mask;; i = (i + 1) & mask)
     {
       Slot& slot = slots[i];
       if (slot.epoch != now)
       {
-        slot.key[0] = a;
-        slot.key[1] = b;
-        slot.key[2] = c;
+        std::copy(key.begin(), key.end(), slot.key);
         return slot;
       }
-      if (slot.key[0] == a && slot.key[1] == b && slot.key[2] == c)
+      if (slot.key[0] == key[0] && slot.key[1] == key[1] && slot.key[2] == key[2])
         return slot;
     }
   };
