@@ -214,21 +214,16 @@ void replaceTets(TetMesh& mesh,
     bool constrained; // boundary only
   };
   thread_local std::vector<Slot> slots;
-  // Old tets by id (the call's epoch): a neighbour in the region is not on its boundary.
-  thread_local std::vector<std::uint32_t> oldMark;
   thread_local std::uint32_t epoch = 0;
   std::size_t size = 16;
   while (size < 2 * 4 * (oldTets.size() + newTets.size()))
     size *= 2;
   if (slots.size() < size)
     slots.resize(size);
-  if (oldMark.size() < static_cast<std::size_t>(mesh.tetCapacity()))
-    oldMark.resize(2 * static_cast<std::size_t>(mesh.tetCapacity()), 0);
   if (++epoch == 0)
   {
     for (Slot& slot : slots)
       slot.epoch = 0;
-    std::fill(oldMark.begin(), oldMark.end(), 0u);
     epoch = 1;
   }
   const std::uint32_t now = epoch;
@@ -253,15 +248,15 @@ void replaceTets(TetMesh& mesh,
     }
   };
   for (TetId t : oldTets)
-    oldMark[t] = now;
-  for (TetId t : oldTets)
   {
     const VertexId* v = &mesh.tets[4 * static_cast<std::size_t>(t)];
     for (int f = 0; f < 4; ++f)
     {
+      // A neighbour in the region: not a boundary face. (A search of the few old tets, not a
+      // mark per tet slot: such an array grew with the mesh, +9 MB at fandisk h/2.)
       FaceRef n = mesh.neighbor(t, f);
-      if (n != kNoNeighbor && static_cast<std::size_t>(faceTet(n)) < oldMark.size() &&
-        oldMark[faceTet(n)] == now)
+      if (n != kNoNeighbor &&
+        std::find(oldTets.begin(), oldTets.end(), faceTet(n)) != oldTets.end())
         continue;
       const int* fv = kFaceVertices[f];
       Slot& slot = slotOf(v[fv[0]], v[fv[1]], v[fv[2]]);
