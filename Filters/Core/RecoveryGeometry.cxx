@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cstdint>
 #include <iterator>
 #include <vector>
@@ -300,10 +301,14 @@ struct SeparationPlanes
   }
 };
 
+// The table for n = 5, 6 or 7 points (a point, a segment or a triangle against the tet).
 const SeparationPlanes& separationPlanes(int n)
 {
-  static const SeparationPlanes segment(6), triangle(7);
-  return n == 6 ? segment : triangle;
+  assert(n >= 5 && n <= 7);
+  static const SeparationPlanes tables[3] = {
+    SeparationPlanes(5), SeparationPlanes(6), SeparationPlanes(7)
+  };
+  return tables[n - 5];
 }
 } // namespace
 
