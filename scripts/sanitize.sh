@@ -5,6 +5,7 @@
 #   scripts/sanitize.sh          # core: VTK-free core + every core test      (build-asan-core/)
 #   scripts/sanitize.sh vtk      # also the VTK module and its C++ tests      (build-asan/)
 #   scripts/sanitize.sh all      # both
+#   scripts/sanitize.sh threads  # the Delaunay kernel's tests under ThreadSanitizer (build-tsan/)
 #
 # Any sanitizer report fails the test that hit it (halt_on_error, also for UBSan). Leak
 # checking is on. Python and pvpython tests are not run here: their interpreters are not
@@ -17,6 +18,7 @@ what=${1:-core}
 jobs=${SANITIZE_JOBS:-2}
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
+export TSAN_OPTIONS=${TSAN_OPTIONS:-halt_on_error=1}
 timings=()
 
 phase() { # name command...
@@ -59,9 +61,23 @@ vtk() {
     --cli-only $b/bin/tetmesher Testing/Data/defects
 }
 
+# The kernel inserts large rounds on two threads that must never touch the same tets: any
+# data race fails the test that hit it.
+threads() {
+  local b=build-tsan
+  phase "configure core (TSan)" cmake -S . -B $b -DTETMESHER_CORE_ONLY=ON \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS=-fsanitize=thread \
+    -DCMAKE_EXE_LINKER_FLAGS=-fsanitize=thread >/dev/null
+  phase "build kernel tests (TSan)" cmake --build $b -j"$jobs" --target CoreTestDelaunayHalves \
+    CoreTestDelaunay
+  phase "kernel tests (TSan)" ctest --test-dir $b \
+    --output-on-failure -j1 -R 'Core\.TestDelaunay' ${CTEST_ARGS:-}
+}
+
 case $what in
   core) core ;;
   vtk) vtk ;;
   all) core && vtk ;;
-  *) echo "usage: $0 [core|vtk|all]" >&2; exit 2 ;;
+  threads) threads ;;
+  *) echo "usage: $0 [core|vtk|all|threads]" >&2; exit 2 ;;
 esac

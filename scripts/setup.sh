@@ -17,7 +17,7 @@ packages=(
   libvtk9-dev python3-vtk9 python3-numpy
   paraview paraview-dev qtbase5-dev qttools5-dev libqt5svg5-dev qtxmlpatterns5-dev-tools libqt5opengl5-dev
   libgtest-dev libgmp-dev xvfb xauth
-  tetgen gmsh libcgal-dev
+  tetgen gmsh libcgal-dev libtbb-dev
 )
 
 missing=()

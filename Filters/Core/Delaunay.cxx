@@ -15,6 +15,16 @@
 //     indexed by local numbers of the boundary vertices (fast mode, up to 64 of them), else
 //     a small hash table.
 //
+// Partitioned insertion (buildDelaunay, large BRIO rounds; after the parallel Delaunay of
+// Gmsh HXT, Marot, Pellerin and Remacle 2019, with two fixed halves): a round's points are
+// split at the median of their longest extent, and each half is inserted by its own thread.
+// A tet belongs to a side when its 4 vertices lie in that side's half; a side only deletes
+// and creates its own tets (a cone over a face of its own tets is its own), and postpones a
+// point whose walk or cavity would reach a tet with a vertex of the other half. The halves
+// then split again across the first split for the postponed points, and the rest go in
+// order. Each side reads only data the other never writes, so the mesh, tet numbering
+// included, is the same on one thread or two.
+//
 // Checked mode (insertVertex) uses scratch flag bits, cleared before returning: kScratchBit0 =
 // tet is in the cavity, kScratchBit1 = tet was tested and is not in the cavity. Fast mode
 // (buildDelaunay, no constraints) never touches mesh.flags: it marks tets in the sign bits of
@@ -25,12 +35,15 @@
 #include "HilbertSort.h"
 #include "HugePages.h"
 #include "MeshValidation.h"
+#include "ParallelPair.h"
 #include "Predicates.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <iterator>
+#include <memory>
 
 namespace tetmesher
 {
@@ -49,6 +62,39 @@ inline unsigned nextRandom(std::uint64_t& state)
   return static_cast<unsigned>(state >> 32);
 }
 } // namespace
+
+// Partitioned insertion (insertSide): the half of space one side owns, a coordinate below a
+// split value or not. A tet is the side's when its 4 vertices are; only that side creates or
+// deletes such tets, so two sides never touch the same tet (see insertSide).
+struct SpacePartition
+{
+  const double* coords;
+  int axis;
+  double split;
+  bool lower; // owns the vertices whose coordinate is below split
+
+  bool owns(VertexId v) const
+  {
+    return (coords[3 * static_cast<std::size_t>(v) + axis] < split) == lower;
+  }
+};
+
+// The tet slots one side may fill: slots it freed, then a private range of the arrays.
+struct SlotPool
+{
+  std::vector<TetId> freed;
+  TetId next = 0, end = 0;
+
+  std::size_t available() const { return freed.size() + static_cast<std::size_t>(end - next); }
+  TetId take()
+  {
+    if (freed.empty())
+      return next++;
+    const TetId t = freed.back();
+    freed.pop_back();
+    return t;
+  }
+};
 
 struct InsertionWorkspace
 {
@@ -92,6 +138,9 @@ struct InsertionWorkspace
   // Ids that define the symbolic perturbation, when the mesh being built uses other ids
   // (buildDelaunay renumbers the points in insertion order); nullptr: the ids themselves.
   const VertexId* perturbationIds = nullptr;
+  // Partitioned insertion only: the side this workspace inserts for, and its slots.
+  const SpacePartition* partition = nullptr;
+  SlotPool* pool = nullptr;
 
   InsertionWorkspace()
   {
@@ -156,7 +205,18 @@ TetId exhaustiveLocate(const TetMesh& mesh, const double* p)
   return -1;
 }
 
-TetId walk(const TetMesh& mesh, const double* p, TetId start, std::uint64_t& rng)
+// walk's answer when a partitioned walk would have to leave its side's tets.
+constexpr TetId kPostponed = -2;
+
+// Partitioned: the walk never crosses a face whose 3 vertices all belong to the other side
+// (the other side may be rewriting the tets there); it returns kPostponed instead, and on
+// reaching the step limit.
+template<bool Partitioned = false>
+TetId walk(const TetMesh& mesh,
+  const double* p,
+  TetId start,
+  std::uint64_t& rng,
+  const SpacePartition* side = nullptr)
 {
   const double* coords = mesh.coords.data();
   TetId t = start;
@@ -173,6 +233,13 @@ TetId walk(const TetMesh& mesh, const double* p, TetId start, std::uint64_t& rng
         continue;
       if (faceOrient(mesh, coords, t, f, p) < 0)
       {
+        if constexpr (Partitioned)
+        {
+          const VertexId* tv = &mesh.tets[4 * static_cast<std::size_t>(t)];
+          if (!side->owns(tv[kFaceVertices[f][0]]) && !side->owns(tv[kFaceVertices[f][1]]) &&
+            !side->owns(tv[kFaceVertices[f][2]]))
+            return kPostponed;
+        }
         const FaceRef n = mesh.neighbor(t, f);
         if (n == kNoNeighbor)
           return -1;
@@ -185,6 +252,8 @@ TetId walk(const TetMesh& mesh, const double* p, TetId start, std::uint64_t& rng
     if (!moved)
       return t;
   }
+  if constexpr (Partitioned)
+    return kPostponed;
   return exhaustiveLocate(mesh, p);
 }
 
@@ -335,10 +404,30 @@ inline VertexId unmarked(VertexId v)
   return static_cast<VertexId>(static_cast<std::uint32_t>(v) & ~kMarkBit);
 }
 
+inline void unmarkCavity(VertexId* tets, const InsertionWorkspace& ws)
+{
+  for (TetId c : ws.cavity)
+  {
+    VertexId* cv = tets + 4 * static_cast<std::size_t>(c);
+    cv[2] = unmarked(cv[2]);
+    cv[3] = unmarked(cv[3]);
+  }
+  for (TetId r : ws.rejected)
+  {
+    VertexId* rv = tets + 4 * static_cast<std::size_t>(r);
+    rv[3] = unmarked(rv[3]);
+  }
+}
+
 // Fast mode (buildDelaunay only): the mesh has no constrained faces, so mesh.flags is never
 // read. The boundary is recorded on the fly. Same breadth-first order as the checked version,
 // hence the same tet ids.
-void growCavityFast(TetMesh& mesh, VertexId v, TetId start, InsertionWorkspace& ws)
+// Partitioned (start is a tet of ws.partition's side): a neighbour that is not the side's
+// own (it has a vertex of the other side) is tested without a mark, since the other side may
+// read it; if it is in conflict the cavity would cross into shared tets, so the marks are
+// undone and false returned (the point is postponed).
+template<bool Partitioned = false>
+bool growCavityFast(TetMesh& mesh, VertexId v, TetId start, InsertionWorkspace& ws)
 {
   const double* coords = mesh.coords.data();
   const FaceRef* neighbors = mesh.neighbors.data();
@@ -365,7 +454,18 @@ void growCavityFast(TetMesh& mesh, VertexId v, TetId start, InsertionWorkspace& 
         VertexId* uv = tets + 4 * static_cast<std::size_t>(faceTet(n));
         if (hasMark(uv, 2))
           continue; // internal face
-        if (!hasMark(uv, 3))
+        if (Partitioned && !hasMark(uv, 3) &&
+          !(ws.partition->owns(uv[0]) && ws.partition->owns(uv[1]) && ws.partition->owns(uv[2]) &&
+            ws.partition->owns(uv[3])))
+        {
+          if (predicates::insphereSoSFiltered(
+                coords, uv[0], uv[1], uv[2], uv[3], v, ws.perturbationIds) > 0)
+          {
+            unmarkCavity(tets, ws);
+            return false;
+          }
+        }
+        else if (!hasMark(uv, 3))
         {
           setMark(uv, 3);
           if (predicates::insphereSoSFiltered(
@@ -394,6 +494,7 @@ void growCavityFast(TetMesh& mesh, VertexId v, TetId start, InsertionWorkspace& 
     VertexId* rv = tets + 4 * static_cast<std::size_t>(r);
     rv[3] = unmarked(rv[3]);
   }
+  return true;
 }
 
 // Checked mode: grows the conflict region from `start`, marking tets in mesh.flags and never
@@ -499,9 +600,11 @@ inline std::size_t directedEdgeHash(VertexId from, VertexId to, std::size_t mask
 
 // Replaces the cavity by the cone from v over ws.boundary. Returns one of the new tets.
 // Fast mode leaves mesh.flags alone: no tet of an unconstrained build has a flag set.
-template<bool Checked>
+// Partitioned (fast mode): new slots come from ws.pool, whose range the arrays already hold.
+template<bool Checked, bool Partitioned = false>
 TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
 {
+  static_assert(!(Checked && Partitioned), "partitioned insertion is unconstrained");
   const std::size_t faceCount = ws.boundary.size();
   // Edge table: at most 3*faceCount entries (fast mode stores both directions of each edge);
   // keep the load factor under 1/4.
@@ -523,7 +626,8 @@ TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
   const std::size_t mask = ws.edgeTable.size() - 1;
   // Grow the tet arrays by 1/4 when full rather than letting std::vector double them: the
   // arrays are most of the memory, and doubling would cost up to 2x (3x during the copy).
-  if (mesh.freeTets.size() + (mesh.tets.capacity() - mesh.tets.size()) / 4 < faceCount)
+  if (!Partitioned &&
+    mesh.freeTets.size() + (mesh.tets.capacity() - mesh.tets.size()) / 4 < faceCount)
   {
     const std::size_t tets = mesh.tets.size() / 4 + faceCount;
     const std::size_t grown = tets + tets / 4;
@@ -589,6 +693,16 @@ TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
       mesh.tets[base + 3] = v;
       if (Checked)
         mesh.flags[t] = 0;
+    }
+    else if (Partitioned)
+    {
+      t = ws.pool->take();
+      const std::size_t base = 4 * static_cast<std::size_t>(t);
+      mesh.flags[t] = 0;
+      mesh.tets[base] = bf.v[0];
+      mesh.tets[base + 1] = bf.v[1];
+      mesh.tets[base + 2] = bf.v[2];
+      mesh.tets[base + 3] = v;
     }
     else
       t = mesh.addTet(bf.v[0], bf.v[1], bf.v[2], v);
@@ -682,7 +796,13 @@ TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
   for (std::size_t i = reused; i < ws.cavity.size(); ++i)
   {
     mesh.flags[ws.cavity[i]] = 0;
-    mesh.deleteTet(ws.cavity[i]);
+    if (Partitioned)
+    {
+      mesh.tets[4 * static_cast<std::size_t>(ws.cavity[i])] = kDeletedTet;
+      ws.pool->freed.push_back(ws.cavity[i]);
+    }
+    else
+      mesh.deleteTet(ws.cavity[i]);
   }
   return lastTet;
 }
@@ -742,6 +862,56 @@ InsertResult insertImpl(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspac
   return { InsertStatus::Inserted, created, -1 };
 }
 
+// One point of a partitioned phase (insertInHalves). The side's tets (all 4 vertices its own)
+// are created and deleted only by this side; tets with vertices of both sides are neither
+// created nor deleted by anyone during the phase. So the walk may cross any face with a
+// vertex of its own (the entries of such faces are written only by this side, if at all),
+// and the cavity may hold only the side's tets. Nothing this side reads is written by the
+// other, which makes each side's work, and the mesh, independent of the thread schedule.
+enum class SideOutcome
+{
+  Inserted,
+  Duplicate,
+  Postponed
+};
+
+SideOutcome insertSide(TetMesh& mesh,
+  VertexId v,
+  TetId& hint,
+  InsertionWorkspace& ws,
+  VertexId& existing)
+{
+  const double* p = mesh.point(v);
+  const TetId t = walk<true>(mesh, p, hint, ws.rng, ws.partition);
+  if (t < 0)
+    return SideOutcome::Postponed;
+  const VertexId* tv = &mesh.tets[4 * static_cast<std::size_t>(t)];
+  for (int k = 0; k < 4; ++k)
+  {
+    const double* q = mesh.point(tv[k]);
+    if (q[0] == p[0] && q[1] == p[1] && q[2] == p[2])
+    {
+      hint = t;
+      existing = tv[k];
+      return SideOutcome::Duplicate;
+    }
+  }
+  for (int k = 0; k < 4; ++k)
+    if (!ws.partition->owns(tv[k]))
+      return SideOutcome::Postponed;
+  if (!growCavityFast<true>(mesh, v, t, ws))
+    return SideOutcome::Postponed;
+  // The cone needs boundary.size() slots; the cavity gives back cavity.size().
+  if (ws.boundary.size() > ws.cavity.size() &&
+    ws.pool->available() < ws.boundary.size() - ws.cavity.size())
+  {
+    unmarkCavity(mesh.tets.data(), ws);
+    return SideOutcome::Postponed;
+  }
+  hint = fillCavity<false, true>(mesh, v, ws);
+  return SideOutcome::Inserted;
+}
+
 // Glues the faces of a handful of tets by brute-force matching of their vertex triples.
 void glueByMatching(TetMesh& mesh, const TetId* tets, int count)
 {
@@ -763,6 +933,151 @@ void glueByMatching(TetMesh& mesh, const TetId* tets, int count)
             mesh.glue(tets[i], f, tets[j], g);
         }
     }
+}
+
+// Points per phase below which splitting is not worth starting threads and sizing ranges.
+constexpr std::size_t kMinHalvesPoints = 16384;
+
+// Everything one side writes while inserting, on cache lines of its own: the two threads
+// would otherwise share lines (slot counters, hints) and stall each other on every insertion.
+struct alignas(64) Side
+{
+  InsertionWorkspace ws;
+  SlotPool pool;
+  SpacePartition partition;
+  TetId hint = -1;
+  std::vector<VertexId> points, postponed;
+  std::vector<std::pair<VertexId, VertexId>> duplicates;
+};
+
+struct Halves
+{
+  Side side[2];
+};
+
+// Inserts the pending points (renumbered ids, ascending) in two halves of space, split at
+// the median of their longest extent, one half per thread; pending becomes the points either
+// half postponed (ascending), to be retried. Duplicates are appended as (id, existing).
+void insertInHalves(TetMesh& mesh,
+  std::vector<VertexId>& pending,
+  TetId& hint,
+  InsertionWorkspace& mainWs,
+  Halves& halves,
+  std::vector<std::pair<VertexId, VertexId>>& duplicates,
+  bool twoThreads)
+{
+  const double* coords = mesh.coords.data();
+  double lo[3], hi[3];
+  for (int k = 0; k < 3; ++k)
+    lo[k] = hi[k] = coords[3 * static_cast<std::size_t>(pending[0]) + k];
+  for (VertexId v : pending)
+    for (int k = 0; k < 3; ++k)
+    {
+      lo[k] = std::min(lo[k], coords[3 * static_cast<std::size_t>(v) + k]);
+      hi[k] = std::max(hi[k], coords[3 * static_cast<std::size_t>(v) + k]);
+    }
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (hi[k] - lo[k] > hi[axis] - lo[axis])
+      axis = k;
+  std::vector<double> values(pending.size());
+  for (std::size_t i = 0; i < pending.size(); ++i)
+    values[i] = coords[3 * static_cast<std::size_t>(pending[i]) + axis];
+  std::nth_element(
+    values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
+  const double split = values[values.size() / 2];
+  Side* side = halves.side;
+  for (int k = 0; k < 2; ++k)
+  {
+    side[k].points.clear();
+    side[k].postponed.clear();
+    side[k].duplicates.clear();
+  }
+  for (VertexId v : pending)
+    side[coords[3 * static_cast<std::size_t>(v) + axis] < split ? 0 : 1].points.push_back(v);
+  if (side[0].points.empty() || side[1].points.empty())
+    return;
+  // Each side starts from the tet holding its first point: that tet has a vertex of the side
+  // (it holds a point of the side's half), so it is never the other side's alone.
+  for (int k = 0; k < 2; ++k)
+  {
+    side[k].hint = walk(mesh, mesh.point(side[k].points[0]), hint, mainWs.rng);
+    if (side[k].hint < 0)
+      return;
+  }
+
+  // Slots: each side gets a private range of 7 tets per point (an insertion adds 6.7 on
+  // average in a Delaunay mesh); a side that runs out postpones its remaining points. Side 1's
+  // range ends the arrays, so what it leaves unused is cut off afterwards.
+  const TetId first = mesh.tetCapacity();
+  const TetId size0 = static_cast<TetId>(7 * side[0].points.size() + 1024);
+  const TetId size1 = static_cast<TetId>(7 * side[1].points.size() + 1024);
+  const std::size_t total = static_cast<std::size_t>(first) + size0 + size1;
+  if (4 * total > mesh.tets.capacity())
+  {
+    mesh.tets.reserve(4 * (total + total / 16));
+    mesh.neighbors.reserve(4 * (total + total / 16));
+    mesh.flags.reserve(total + total / 16);
+  }
+  // Not filled (FlatArray): each side writes the slots it takes, so the fresh pages are first
+  // touched by the thread that uses them.
+  mesh.tets.resize(4 * total);
+  mesh.neighbors.resize(4 * total);
+  mesh.flags.resize(total);
+  side[0].pool.freed = std::move(mesh.freeTets);
+  mesh.freeTets.clear();
+  side[0].pool.next = first;
+  side[0].pool.end = first + size0;
+  side[1].pool.freed.clear();
+  side[1].pool.next = first + size0;
+  side[1].pool.end = static_cast<TetId>(total);
+
+  auto work = [&mesh, side, coords, axis, split, &mainWs](int k)
+  {
+    Side& me = side[k];
+    me.partition = { coords, axis, split, k == 0 };
+    me.ws.partition = &me.partition;
+    me.ws.pool = &me.pool;
+    me.ws.perturbationIds = mainWs.perturbationIds;
+    for (VertexId v : me.points)
+    {
+      VertexId existing = -1;
+      switch (insertSide(mesh, v, me.hint, me.ws, existing))
+      {
+        case SideOutcome::Inserted:
+          break;
+        case SideOutcome::Duplicate:
+          me.duplicates.emplace_back(v, existing);
+          break;
+        case SideOutcome::Postponed:
+          me.postponed.push_back(v);
+          break;
+      }
+    }
+  };
+  runPair(twoThreads, work);
+
+  mesh.tets.resize(4 * static_cast<std::size_t>(side[1].pool.next));
+  mesh.neighbors.resize(4 * static_cast<std::size_t>(side[1].pool.next));
+  mesh.flags.resize(static_cast<std::size_t>(side[1].pool.next));
+  mesh.freeTets = std::move(side[0].pool.freed);
+  for (TetId t = side[0].pool.next; t < side[0].pool.end; ++t)
+  {
+    mesh.tets[4 * static_cast<std::size_t>(t)] = kDeletedTet;
+    mesh.flags[t] = 0;
+    mesh.freeTets.push_back(t);
+  }
+  mesh.freeTets.insert(mesh.freeTets.end(), side[1].pool.freed.begin(), side[1].pool.freed.end());
+  side[0].pool.freed.clear();
+  hint = side[1].hint;
+  for (int k = 0; k < 2; ++k)
+    duplicates.insert(duplicates.end(), side[k].duplicates.begin(), side[k].duplicates.end());
+  pending.clear();
+  std::merge(side[0].postponed.begin(),
+    side[0].postponed.end(),
+    side[1].postponed.begin(),
+    side[1].postponed.end(),
+    std::back_inserter(pending));
 }
 
 } // namespace
@@ -820,8 +1135,9 @@ DelaunayResult buildDelaunay(TetMesh& mesh, const DelaunayOptions& options)
   const double margin = std::max(options.boxEnlargement, 0.01) * diagonal;
 
   // Reserve for the expected ~6.8 tets per point (uniform random points) so the arrays never
-  // reallocate (and never transiently double the memory) during insertion.
-  const std::size_t expectedTets = static_cast<std::size_t>(n) * 7 + 64;
+  // reallocate (and never transiently double the memory) during insertion, with room for the
+  // slots the halves leave unused (insertInHalves). Reserved pages cost nothing until touched.
+  const std::size_t expectedTets = static_cast<std::size_t>(n) * 15 / 2 + 64;
   if (mesh.coords.capacity() < 3 * (static_cast<std::size_t>(n) + 8))
   {
     // Room for the 8 box corners: the points move to storage advised onto huge pages before
@@ -881,47 +1197,96 @@ DelaunayResult buildDelaunay(TetMesh& mesh, const DelaunayOptions& options)
   // and then every in-sphere test would miss the cache). The symbolic perturbation still
   // uses the caller's ids, so the mesh is the same as without renumbering; the tets are
   // mapped back to the caller's ids at the end.
-  std::vector<VertexId> originalId = brioOrder(mesh.coords.data(), n);
+  // Loops over all points or tets run in halves on two threads (the results are the same).
+  const bool twoThreads = options.partitioned && wantTwoThreads(options.threads);
+  constexpr std::size_t kMinHalves = 65536;
+  std::vector<std::size_t> roundStarts;
+  std::vector<VertexId> originalId =
+    brioOrder(mesh.coords.data(), n, 0x5eed5eedULL, &roundStarts, twoThreads);
   for (VertexId v = n; v < n + 8; ++v)
     originalId.push_back(v);
   std::vector<double> inputCoords = std::move(mesh.coords);
   mesh.coords.reserve(inputCoords.size());
   adviseHugePages(mesh.coords);
   mesh.coords.resize(inputCoords.size());
-  for (std::size_t i = 0; i < originalId.size(); ++i)
-    for (int k = 0; k < 3; ++k)
-      mesh.coords[3 * i + k] = inputCoords[3 * static_cast<std::size_t>(originalId[i]) + k];
+  forHalves(originalId.size(),
+    twoThreads,
+    kMinHalves,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t i = begin; i < end; ++i)
+        for (int k = 0; k < 3; ++k)
+          mesh.coords[3 * i + k] = inputCoords[3 * static_cast<std::size_t>(originalId[i]) + k];
+    });
 
   InsertionWorkspace ws;
   ws.perturbationIds = originalId.data();
   TetId hint = box[0];
-  for (VertexId v = 0; v < n; ++v)
+  std::vector<std::pair<VertexId, VertexId>> duplicates; // (id, the id it duplicates)
+  auto insertInOrder = [&](VertexId v)
   {
     const InsertResult r = insertImpl<false>(mesh, v, hint, ws);
     if (r.status == InsertStatus::Inserted)
       hint = r.tet;
     else if (r.status == InsertStatus::Duplicate)
     {
-      result.duplicates.push_back(originalId[static_cast<std::size_t>(v)]);
-      result.duplicateOf.push_back(originalId[static_cast<std::size_t>(r.existing)]);
+      duplicates.emplace_back(v, r.existing);
       hint = r.tet;
     }
     else
+      return false;
+    return true;
+  };
+  // Large rounds go in two halves of space side by side (insertInHalves), twice (the second
+  // time across the first split, for the points near it), and what is left in order.
+  std::unique_ptr<Halves> halves;
+  std::vector<VertexId> pending;
+  for (std::size_t r = 0; r < roundStarts.size(); ++r)
+  {
+    const std::size_t begin = roundStarts[r];
+    const std::size_t end = r + 1 < roundStarts.size() ? roundStarts[r + 1] : n;
+    pending.clear();
+    if (options.partitioned && end - begin >= kMinHalvesPoints)
     {
-      result.error = "vertex " + std::to_string(originalId[static_cast<std::size_t>(v)]) +
-        " could not be inserted";
-      mesh.coords = std::move(inputCoords);
-      return result;
+      if (!halves)
+        halves = std::make_unique<Halves>();
+      for (std::size_t i = begin; i < end; ++i)
+        pending.push_back(static_cast<VertexId>(i));
+      for (int phase = 0; phase < 2 && pending.size() >= kMinHalvesPoints; ++phase)
+        insertInHalves(mesh, pending, hint, ws, *halves, duplicates, twoThreads);
     }
+    else
+      for (std::size_t i = begin; i < end; ++i)
+        pending.push_back(static_cast<VertexId>(i));
+    for (VertexId v : pending)
+      if (!insertInOrder(v))
+      {
+        result.error = "vertex " + std::to_string(originalId[static_cast<std::size_t>(v)]) +
+          " could not be inserted";
+        mesh.coords = std::move(inputCoords);
+        return result;
+      }
+  }
+  std::sort(duplicates.begin(), duplicates.end());
+  for (const auto& [v, existing] : duplicates)
+  {
+    result.duplicates.push_back(originalId[static_cast<std::size_t>(v)]);
+    result.duplicateOf.push_back(originalId[static_cast<std::size_t>(existing)]);
   }
   mesh.coords = std::move(inputCoords);
-  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
-    if (!mesh.isDeleted(t))
-      for (int k = 0; k < 4; ++k)
-      {
-        VertexId& id = mesh.tets[4 * static_cast<std::size_t>(t) + k];
-        id = originalId[static_cast<std::size_t>(id)];
-      }
+  forHalves(static_cast<std::size_t>(mesh.tetCapacity()),
+    twoThreads,
+    kMinHalves,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t t = begin; t < end; ++t)
+        if (!mesh.isDeleted(static_cast<TetId>(t)))
+          for (int k = 0; k < 4; ++k)
+          {
+            VertexId& id = mesh.tets[4 * t + k];
+            id = originalId[static_cast<std::size_t>(id)];
+          }
+    });
 
   if (options.validate)
   {

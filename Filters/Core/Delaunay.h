@@ -16,6 +16,13 @@ struct DelaunayOptions
   double boxEnlargement = 0.5;
   // Check the result exhaustively (exact) after construction; for tests and debugging.
   bool validate = false;
+  // Large BRIO rounds are split in two halves of space, inserted side by side (see
+  // Delaunay.cxx). The triangulation is the same either way (the symbolic perturbation makes
+  // it unique); only the tets' numbering differs. false: one insertion sequence.
+  bool partitioned = true;
+  // Threads for the two halves: 0 = two when the machine has two CPUs, 1 = one after the
+  // other. The mesh, numbering included, does not depend on it.
+  int threads = 0;
 };
 
 struct DelaunayResult

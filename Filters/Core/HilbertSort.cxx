@@ -4,6 +4,7 @@
 #include "HilbertSort.h"
 
 #include "HugePages.h"
+#include "ParallelPair.h"
 #include "RadixSort.h"
 
 #include <algorithm>
@@ -117,7 +118,7 @@ struct Keyed
 
 } // namespace
 
-void hilbertSort(const double* coords, VertexId* first, VertexId* last)
+void hilbertSort(const double* coords, VertexId* first, VertexId* last, bool twoThreads)
 {
   // 16 levels (2^48 cells) separate any realistic point count; fewer levels, faster keys.
   constexpr int kBits = 16;
@@ -130,9 +131,16 @@ void hilbertSort(const double* coords, VertexId* first, VertexId* last)
   gathered.reserve(3 * count);
   adviseHugePages(gathered);
   gathered.resize(3 * count);
-  for (std::size_t i = 0; i < count; ++i)
-    for (int k = 0; k < 3; ++k)
-      gathered[3 * i + k] = coords[3 * static_cast<std::size_t>(first[i]) + k];
+  constexpr std::size_t kMinHalves = 65536;
+  forHalves(count,
+    twoThreads,
+    kMinHalves,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t i = begin; i < end; ++i)
+        for (int k = 0; k < 3; ++k)
+          gathered[3 * i + k] = coords[3 * static_cast<std::size_t>(first[i]) + k];
+    });
   const Box box = boundingGrid(gathered.data(), count, kBits);
 
   std::vector<Keyed> keyed, scratch;
@@ -140,16 +148,22 @@ void hilbertSort(const double* coords, VertexId* first, VertexId* last)
   adviseHugePages(keyed);
   keyed.resize(count);
   const double maxCell = std::ldexp(1.0, kBits) - 1.0;
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    std::uint32_t g[3];
-    for (int k = 0; k < 3; ++k)
+  forHalves(count,
+    twoThreads,
+    kMinHalves,
+    [&](std::size_t begin, std::size_t end)
     {
-      const double c = (gathered[3 * i + k] - box.lo[k]) * box.scale;
-      g[k] = static_cast<std::uint32_t>(std::min(c, maxCell));
-    }
-    keyed[i] = { hilbertIndex(g[0], g[1], g[2], kBits), first[i] };
-  }
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        std::uint32_t g[3];
+        for (int k = 0; k < 3; ++k)
+        {
+          const double c = (gathered[3 * i + k] - box.lo[k]) * box.scale;
+          g[k] = static_cast<std::uint32_t>(std::min(c, maxCell));
+        }
+        keyed[i] = { hilbertIndex(g[0], g[1], g[2], kBits), first[i] };
+      }
+    });
   const auto byKeyThenId = [](const Keyed& a, const Keyed& b)
   { return a.key < b.key || (a.key == b.key && a.id < b.id); };
   if (count < 1024)
@@ -157,7 +171,7 @@ void hilbertSort(const double* coords, VertexId* first, VertexId* last)
   else
   {
     radixSortByKey(
-      keyed, scratch, [](const Keyed& k) { return k.key; }, 3 * kBits);
+      keyed, scratch, [](const Keyed& k) { return k.key; }, 3 * kBits, twoThreads);
     // Equal keys (duplicate or nearly coincident points) are ordered by id, as the
     // comparison sort would: find the runs and sort each.
     for (std::size_t i = 0; i + 1 < count;)
@@ -176,7 +190,11 @@ void hilbertSort(const double* coords, VertexId* first, VertexId* last)
     first[i] = keyed[i].id;
 }
 
-std::vector<VertexId> brioOrder(const double* coords, VertexId n, std::uint64_t seed)
+std::vector<VertexId> brioOrder(const double* coords,
+  VertexId n,
+  std::uint64_t seed,
+  std::vector<std::size_t>* roundStarts,
+  bool twoThreads)
 {
   std::vector<VertexId> order;
   order.reserve(static_cast<std::size_t>(n));
@@ -198,9 +216,13 @@ std::vector<VertexId> brioOrder(const double* coords, VertexId n, std::uint64_t 
   while (end > 0)
   {
     std::size_t begin = end <= kMinRound ? 0 : static_cast<std::size_t>(end * kRatio);
-    hilbertSort(coords, order.data() + begin, order.data() + end);
+    hilbertSort(coords, order.data() + begin, order.data() + end, twoThreads);
+    if (roundStarts)
+      roundStarts->push_back(begin);
     end = begin;
   }
+  if (roundStarts)
+    std::reverse(roundStarts->begin(), roundStarts->end());
   return order;
 }
 

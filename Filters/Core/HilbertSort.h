@@ -22,12 +22,16 @@ std::uint64_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z, in
 
 // Sorts the vertex ids in [first, last) along the Hilbert curve of the bounding box of all
 // `coords` (3 doubles per vertex). Ties are broken by id, so the order is deterministic.
-void hilbertSort(const double* coords, VertexId* first, VertexId* last);
+// twoThreads: large sorts run in halves on two threads (the same order).
+void hilbertSort(const double* coords, VertexId* first, VertexId* last, bool twoThreads = false);
 
 // Returns ids 0..n-1 in BRIO order: shuffled with the given seed, split into rounds (each
-// round about 1/ratio times the previous one), each round Hilbert-sorted.
+// round about 1/ratio times the previous one), each round Hilbert-sorted. roundStarts, when
+// given, receives the position of each round's first id, in order (the first is 0).
 std::vector<VertexId> brioOrder(const double* coords,
   VertexId n,
-  std::uint64_t seed = 0x5eed5eedULL);
+  std::uint64_t seed = 0x5eed5eedULL,
+  std::vector<std::size_t>* roundStarts = nullptr,
+  bool twoThreads = false);
 
 } // namespace tetmesher

@@ -15,8 +15,8 @@ namespace tetmesher
 
 // Advises the whole 2 MiB pages of v's reserved storage (call after reserve, before the
 // elements are written).
-template<typename T>
-void adviseHugePages(const std::vector<T>& v)
+template<typename T, typename Allocator>
+void adviseHugePages(const std::vector<T, Allocator>& v)
 {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   constexpr std::uintptr_t kHugePage = std::uintptr_t(1) << 21;

@@ -13,6 +13,10 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace tetmesher
@@ -52,13 +56,45 @@ inline int faceIndex(FaceRef r)
   return r & 3;
 }
 
+// An allocator whose value-less construct leaves the element uninitialised, so that resize()
+// of the tet arrays writes nothing: the Delaunay kernel sizes private ranges for two threads
+// and each thread first touches (page faults, zeroing) the slots it fills.
+template<typename T>
+struct UninitializedAllocator : std::allocator<T>
+{
+  template<typename U>
+  struct rebind
+  {
+    using other = UninitializedAllocator<U>;
+  };
+  UninitializedAllocator() = default;
+  template<typename U>
+  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept
+  {
+  }
+  template<typename U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible<U>::value)
+  {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template<typename U, typename... Args>
+  void construct(U* p, Args&&... args)
+  {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+// A std::vector that resize() does not fill (see UninitializedAllocator).
+template<typename T>
+using FlatArray = std::vector<T, UninitializedAllocator<T>>;
+
 struct TetMesh
 {
-  std::vector<double> coords;      // 3 doubles per vertex
-  std::vector<VertexId> tets;      // 4 per tet; tets[4t] == kDeletedTet marks a free slot
-  std::vector<FaceRef> neighbors;  // 4 per tet
-  std::vector<std::uint8_t> flags; // 1 per tet
-  std::vector<TetId> freeTets;     // deleted slots available for reuse
+  std::vector<double> coords;    // 3 doubles per vertex
+  FlatArray<VertexId> tets;      // 4 per tet; tets[4t] == kDeletedTet marks a free slot
+  FlatArray<FaceRef> neighbors;  // 4 per tet
+  FlatArray<std::uint8_t> flags; // 1 per tet
+  std::vector<TetId> freeTets;   // deleted slots available for reuse
 
   VertexId vertexCount() const { return static_cast<VertexId>(coords.size() / 3); }
   TetId tetCapacity() const { return static_cast<TetId>(tets.size() / 4); }

@@ -663,7 +663,7 @@ TEST(QualityOptimization, VertexSizeTooShort)
 {
   RegionMesh rm = jitteredGridCube(3);
   std::vector<double> h(3, 0.1);
-  const std::vector<std::int32_t> tetsBefore = rm.mesh.tets;
+  const FlatArray<std::int32_t> tetsBefore = rm.mesh.tets;
   OptimizationResult r = optimizeMesh(rm, {}, &h);
   EXPECT_FALSE(r.ok);
   EXPECT_FALSE(r.error.empty());

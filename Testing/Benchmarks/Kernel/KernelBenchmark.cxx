@@ -1,21 +1,29 @@
 // Delaunay kernel benchmark: our buildDelaunay against TetGen (the `tetgen` command line,
 // run on a .node file) and CGAL's Delaunay_triangulation_3, on the same points.
 //
+// Rows: `ours` (large rounds in two halves on two threads, the default), `ours-1t` (the same
+// mesh on one thread), `tetgen` (one thread), `cgal` (one thread) and `cgal-par` (CGAL's
+// parallel insertion with TBB, on all CPUs, when TBB is found). Ratios are against `ours`.
 // Every measurement runs in a forked child so that each one's peak RSS (getrusage) is its
-// own. Wall time and CPU time (user + system) are both reported: on a shared machine the CPU
-// time ratios are the steadier ones. Usage: TetMesherKernelBenchmark [--quick] [--no-tetgen]
-// [--no-cgal] [--no-10m] [--only uniform|sphere|grid]
+// own. Wall time and CPU time (user + system, of all threads) are both reported. Usage:
+// TetMesherKernelBenchmark [--quick] [--no-tetgen] [--no-cgal] [--no-10m]
+// [--only uniform|sphere|grid]
 #include "Delaunay.h"
 
 #ifdef TETMESHER_BENCHMARK_CGAL
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#ifdef CGAL_LINKED_WITH_TBB
+#include <CGAL/Delaunay_triangulation_cell_base_3.h>
+#include <CGAL/Triangulation_vertex_base_3.h>
+#endif
 #endif
 
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -112,17 +120,19 @@ std::vector<double> makePoints(const std::string& kind, std::size_t n)
   return p;
 }
 
-Measurement runOurs(const std::vector<double>& points)
+Measurement runOurs(const std::vector<double>& points, int threads)
 {
   return isolated(
-    [&points]()
+    [&points, threads]()
     {
       Measurement m;
       m.baseRssBytes = peakRss(RUSAGE_SELF);
       const double start = nowSeconds(), cpuStart = cpuTime(RUSAGE_SELF);
       tetmesher::TetMesh mesh;
       mesh.coords = points;
-      const tetmesher::DelaunayResult r = tetmesher::buildDelaunay(mesh);
+      tetmesher::DelaunayOptions options;
+      options.threads = threads;
+      const tetmesher::DelaunayResult r = tetmesher::buildDelaunay(mesh, options);
       m.seconds = nowSeconds() - start;
       m.cpuSeconds = cpuTime(RUSAGE_SELF) - cpuStart;
       if (!r.ok)
@@ -191,6 +201,45 @@ Measurement runCgal(const std::vector<double>& points)
       return m;
     });
 }
+
+#ifdef CGAL_LINKED_WITH_TBB
+Measurement runCgalParallel(const std::vector<double>& points)
+{
+  return isolated(
+    [&points]()
+    {
+      using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+      using Tds = CGAL::Triangulation_data_structure_3<CGAL::Triangulation_vertex_base_3<Kernel>,
+        CGAL::Delaunay_triangulation_cell_base_3<Kernel>,
+        CGAL::Parallel_tag>;
+      using Triangulation = CGAL::Delaunay_triangulation_3<Kernel, Tds>;
+      Measurement m;
+      m.baseRssBytes = peakRss(RUSAGE_SELF);
+      const double start = nowSeconds(), cpuStart = cpuTime(RUSAGE_SELF);
+      std::vector<Kernel::Point_3> pts;
+      pts.reserve(points.size() / 3);
+      double lo[3] = { points[0], points[1], points[2] }, hi[3] = { lo[0], lo[1], lo[2] };
+      for (std::size_t i = 0; i < points.size(); i += 3)
+      {
+        pts.emplace_back(points[i], points[i + 1], points[i + 2]);
+        for (int k = 0; k < 3; ++k)
+        {
+          lo[k] = std::min(lo[k], points[i + k]);
+          hi[k] = std::max(hi[k], points[i + k]);
+        }
+      }
+      // The locking grid over the points' box, 50 cells a side (CGAL's example).
+      Triangulation::Lock_data_structure locks(
+        CGAL::Bbox_3(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]), 50);
+      Triangulation t(pts.begin(), pts.end(), &locks);
+      m.seconds = nowSeconds() - start;
+      m.cpuSeconds = cpuTime(RUSAGE_SELF) - cpuStart;
+      m.tets = static_cast<double>(t.number_of_finite_cells());
+      m.peakRssBytes = peakRss(RUSAGE_SELF);
+      return m;
+    });
+}
+#endif
 #endif
 
 void report(const char* who, const Measurement& m, double points, const Measurement& ours)
@@ -267,8 +316,10 @@ int main(int argc, char** argv)
     const double n = static_cast<double>(points.size() / 3);
     std::printf("%s, %.0f points\n", c.kind.c_str(), n);
     std::fflush(stdout);
-    const Measurement ours = runOurs(points);
+    const Measurement ours = runOurs(points, 0);
     report("ours", ours, n, Measurement{});
+    std::fflush(stdout);
+    report("ours-1t", runOurs(points, 1), n, ours);
     std::fflush(stdout);
     if (tetgen)
     {
@@ -280,6 +331,10 @@ int main(int argc, char** argv)
     {
       report("cgal", runCgal(points), n, ours);
       std::fflush(stdout);
+#ifdef CGAL_LINKED_WITH_TBB
+      report("cgal-par", runCgalParallel(points), n, ours);
+      std::fflush(stdout);
+#endif
     }
 #else
     (void)cgal;

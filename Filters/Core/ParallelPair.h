@@ -1,0 +1,87 @@
+// Two pieces of work side by side: the Delaunay kernel's halves of space, and the halves of
+// its sorting and copying loops. The machines this runs on have two or more cores; results
+// never depend on whether the pieces ran on one thread or two.
+#pragma once
+
+#include <cstddef>
+#include <exception>
+#include <system_error>
+#include <thread>
+
+namespace tetmesher
+{
+
+// True when a second thread is worth starting: `threads` as DelaunayOptions::threads (0:
+// when the machine has two CPUs or more).
+inline bool wantTwoThreads(int threads)
+{
+  return threads == 0 ? std::thread::hardware_concurrency() >= 2 : threads >= 2;
+}
+
+// Runs work(0) and work(1): on two threads when twoThreads (and a thread can be started),
+// else one after the other. An exception of either (bad_alloc) is rethrown here once both
+// have stopped, as a one-thread run would throw it.
+template<typename Work>
+void runPair(bool twoThreads, Work&& work)
+{
+  std::exception_ptr failure;
+  std::thread other;
+  if (twoThreads)
+    try
+    {
+      other = std::thread(
+        [&work, &failure]
+        {
+          try
+          {
+            work(1);
+          }
+          catch (...)
+          {
+            failure = std::current_exception();
+          }
+        });
+    }
+    catch (const std::system_error&)
+    {
+    }
+  try
+  {
+    work(0);
+  }
+  catch (...)
+  {
+    if (other.joinable())
+      other.join();
+    throw;
+  }
+  if (other.joinable())
+    other.join();
+  else
+    work(1);
+  if (failure)
+    std::rethrow_exception(failure);
+}
+
+// Calls body(begin, end) on the two halves of [0, count), side by side when twoThreads and
+// count reaches minCount.
+template<typename Body>
+void forHalves(std::size_t count, bool twoThreads, std::size_t minCount, Body&& body)
+{
+  if (!twoThreads || count < minCount)
+  {
+    body(std::size_t(0), count);
+    return;
+  }
+  const std::size_t middle = count / 2;
+  runPair(true,
+    [&](int k)
+    {
+      if (k == 0)
+        body(std::size_t(0), middle);
+      else
+        body(middle, count);
+    });
+}
+
+} // namespace tetmesher
