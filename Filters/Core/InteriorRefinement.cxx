@@ -7,6 +7,7 @@
 #include "HilbertSort.h"
 #include "HugePages.h"
 #include "MemoryBudget.h"
+#include "ParallelPair.h"
 #include "RadixSort.h"
 #include "TriangleDistance.h"
 
@@ -1112,232 +1113,275 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     // bound before the last tets, whose positions the rows' pruning mostly skips anyway.
     constexpr double kMaxLatticeIndex = 1 << 18;
     const double maxCandidates = 16.0 * static_cast<double>(budget) + 1e6;
-    double candidates = 0;
     const TetId initialTets = mesh.tetCapacity();
-    for (TetId t = 0; t < initialTets && candidates <= maxCandidates; ++t)
+    // The positions found in a range of tets, in tet order, duplicates (a position on a face
+    // shared by two tets) included: they are dropped afterwards, first one kept. `peak` is the
+    // most the work bound's tests saw (counter plus the box's cost), to tell whether a range
+    // scanned on its own met the bound where the scan of all tets would have.
+    struct LatticeScan
     {
-      if (mesh.isDeleted(t))
-        continue;
-      const double* c[4];
-      double hc[4];
-      double bmin[3], bmax[3];
-      double hlo = std::numeric_limits<double>::max(), hhi = 0;
-      for (int i = 0; i < 4; ++i)
+      double candidates = 0, peak = 0;
+      std::vector<LatticePoint> points;
+      std::vector<std::uint64_t> keys;
+    };
+    auto scanTets = [&](TetId tBegin, TetId tEnd, LatticeScan& scan)
+    {
+      double& candidates = scan.candidates;
+      for (TetId t = tBegin; t < tEnd && candidates <= maxCandidates; ++t)
       {
-        c[i] = mesh.point(mesh.vertex(t, i));
-        hc[i] = wanted[mesh.vertex(t, i)];
-        // h, unlike hc, went through the floor and the ceiling.
-        hlo = std::min({ hlo, hc[i], h[mesh.vertex(t, i)] });
-        hhi = std::max({ hhi, hc[i], h[mesh.vertex(t, i)] });
+        if (mesh.isDeleted(t))
+          continue;
+        const double* c[4];
+        double hc[4];
+        double bmin[3], bmax[3];
+        double hlo = std::numeric_limits<double>::max(), hhi = 0;
+        for (int i = 0; i < 4; ++i)
+        {
+          c[i] = mesh.point(mesh.vertex(t, i));
+          hc[i] = wanted[mesh.vertex(t, i)];
+          // h, unlike hc, went through the floor and the ceiling.
+          hlo = std::min({ hlo, hc[i], h[mesh.vertex(t, i)] });
+          hhi = std::max({ hhi, hc[i], h[mesh.vertex(t, i)] });
+          for (int k = 0; k < 3; ++k)
+          {
+            bmin[k] = i == 0 ? c[i][k] : std::min(bmin[k], c[i][k]);
+            bmax[k] = i == 0 ? c[i][k] : std::max(bmax[k], c[i][k]);
+          }
+        }
+        const double* const corners[4] = { c[0], c[1], c[2], c[3] };
+        // The lattice positions of the tet's box are mostly outside the tet (boundary-mesh tets
+        // are long and thin): per row (i, j), only the z-range where the tet's barycentric
+        // coordinates can be >= -1e-9 is scanned, widened by a tolerance of 1e-6 and one position
+        // each way; every position scanned still takes the test below, so the points are the
+        // same. Off for flat tets (the coordinates' rounding grows as 1/volume) and with jitter
+        // (a jittered point leaves its row).
+        double extent = 0, scale = 0;
         for (int k = 0; k < 3; ++k)
         {
-          bmin[k] = i == 0 ? c[i][k] : std::min(bmin[k], c[i][k]);
-          bmax[k] = i == 0 ? c[i][k] : std::max(bmax[k], c[i][k]);
+          extent = std::max(extent, bmax[k] - bmin[k]);
+          scale = std::max({ scale, std::fabs(bmin[k]), std::fabs(bmax[k]) });
         }
-      }
-      const double* const corners[4] = { c[0], c[1], c[2], c[3] };
-      // The lattice positions of the tet's box are mostly outside the tet (boundary-mesh tets
-      // are long and thin): per row (i, j), only the z-range where the tet's barycentric
-      // coordinates can be >= -1e-9 is scanned, widened by a tolerance of 1e-6 and one position
-      // each way; every position scanned still takes the test below, so the points are the
-      // same. Off for flat tets (the coordinates' rounding grows as 1/volume) and with jitter
-      // (a jittered point leaves its row).
-      double extent = 0, scale = 0;
-      for (int k = 0; k < 3; ++k)
-      {
-        extent = std::max(extent, bmax[k] - bmin[k]);
-        scale = std::max({ scale, std::fabs(bmin[k]), std::fabs(bmax[k]) });
-      }
-      const double u[3] = { c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2] };
-      const double v[3] = { c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2] };
-      const double w[3] = { c[3][0] - c[0][0], c[3][1] - c[0][1], c[3][2] - c[0][2] };
-      const double volume6 = std::fabs(u[0] * (v[1] * w[2] - v[2] * w[1]) -
-        u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]));
-      // The coordinates' rounding, ~1e-14 (scale + extent) extent^2 / volume6, stays below
-      // 1e-8, far within the tolerance.
-      const bool pruneRows = jitter == 0 && std::isfinite(volume6) &&
-        volume6 > 1e-6 * (scale + extent) * extent * extent;
-      // The barycentric coordinates are affine in the lattice indices: those of the box's
-      // first position and their steps along i, j and k, per level and sub-lattice, give
-      // every row's ends with a few multiplications instead of two barycentric evaluations
-      // (torus.vtp at h = 0.0638 scans 214k rows for 12k points: candidates 37 -> 34 ms).
-      // Rounding moves them by far less than the tolerance below (pruneRows: well shaped).
-      struct RowCoordinates
-      {
-        std::int64_t i0, j0, k0;
-        double base[4], di[4], dj[4], dk[4];
-        bool finite;
-      };
-      auto rowCoordinates =
-        [&](double shift, double a, const double* origin, const std::int64_t* first)
-      {
-        RowCoordinates r{};
-        r.i0 = first[0];
-        r.j0 = first[1];
-        r.k0 = first[2];
-        double b[4][4];
-        r.finite = true;
-        for (int step = 0; step < 4; ++step)
+        const double u[3] = { c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2] };
+        const double v[3] = { c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2] };
+        const double w[3] = { c[3][0] - c[0][0], c[3][1] - c[0][1], c[3][2] - c[0][2] };
+        const double volume6 = std::fabs(u[0] * (v[1] * w[2] - v[2] * w[1]) -
+          u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]));
+        // The coordinates' rounding, ~1e-14 (scale + extent) extent^2 / volume6, stays below
+        // 1e-8, far within the tolerance.
+        const bool pruneRows = jitter == 0 && std::isfinite(volume6) &&
+          volume6 > 1e-6 * (scale + extent) * extent * extent;
+        // The barycentric coordinates are affine in the lattice indices: those of the box's
+        // first position and their steps along i, j and k, per level and sub-lattice, give
+        // every row's ends with a few multiplications instead of two barycentric evaluations
+        // (torus.vtp at h = 0.0638 scans 214k rows for 12k points: candidates 37 -> 34 ms).
+        // Rounding moves them by far less than the tolerance below (pruneRows: well shaped).
+        struct RowCoordinates
         {
-          const double p[3] = { origin[0] + (r.i0 + (step == 1) + shift) * a,
-            origin[1] + (r.j0 + (step == 2) + shift) * a,
-            origin[2] + (r.k0 + (step == 3) + shift) * a };
-          r.finite = r.finite && barycentricCoordinates(p, corners, b[step]);
-        }
-        for (int c = 0; c < 4 && r.finite; ++c)
+          std::int64_t i0, j0, k0;
+          double base[4], di[4], dj[4], dk[4];
+          bool finite;
+        };
+        auto rowCoordinates =
+          [&](double shift, double a, const double* origin, const std::int64_t* first)
         {
-          r.base[c] = b[0][c];
-          r.di[c] = b[1][c] - b[0][c];
-          r.dj[c] = b[2][c] - b[0][c];
-          r.dk[c] = b[3][c] - b[0][c];
-          r.finite = std::isfinite(r.base[c]) && std::isfinite(r.di[c]) && std::isfinite(r.dj[c]) &&
-            std::isfinite(r.dk[c]);
-        }
-        return r;
-      };
-      // Positions [rowFirst, rowLast] of row (i, j) that may be in the tet; false: none.
-      auto rowRange = [&](const RowCoordinates& r,
-                        std::int64_t i,
-                        std::int64_t j,
-                        std::int64_t from,
-                        std::int64_t to,
-                        std::int64_t& rowFirst,
-                        std::int64_t& rowLast)
-      {
-        constexpr double kTolerance = 1e-6;
-        if (!r.finite)
-          return true; // scan the whole row
-        const double si = static_cast<double>(i - r.i0), sj = static_cast<double>(j - r.j0);
-        const double s0 = static_cast<double>(from - r.k0), s1 = static_cast<double>(to - r.k0);
-        // b_k is affine along the row: b_k(u) = b0 + u (b1 - b0), u in [0, 1] from `from` to `to`.
-        double u0 = 0, u1 = 1;
-        for (int k = 0; k < 4; ++k)
+          RowCoordinates r{};
+          r.i0 = first[0];
+          r.j0 = first[1];
+          r.k0 = first[2];
+          double b[4][4];
+          r.finite = true;
+          for (int step = 0; step < 4; ++step)
+          {
+            const double p[3] = { origin[0] + (r.i0 + (step == 1) + shift) * a,
+              origin[1] + (r.j0 + (step == 2) + shift) * a,
+              origin[2] + (r.k0 + (step == 3) + shift) * a };
+            r.finite = r.finite && barycentricCoordinates(p, corners, b[step]);
+          }
+          for (int c = 0; c < 4 && r.finite; ++c)
+          {
+            r.base[c] = b[0][c];
+            r.di[c] = b[1][c] - b[0][c];
+            r.dj[c] = b[2][c] - b[0][c];
+            r.dk[c] = b[3][c] - b[0][c];
+            r.finite = std::isfinite(r.base[c]) && std::isfinite(r.di[c]) &&
+              std::isfinite(r.dj[c]) && std::isfinite(r.dk[c]);
+          }
+          return r;
+        };
+        // Positions [rowFirst, rowLast] of row (i, j) that may be in the tet; false: none.
+        auto rowRange = [&](const RowCoordinates& r,
+                          std::int64_t i,
+                          std::int64_t j,
+                          std::int64_t from,
+                          std::int64_t to,
+                          std::int64_t& rowFirst,
+                          std::int64_t& rowLast)
         {
-          const double b0 = r.base[k] + si * r.di[k] + sj * r.dj[k] + s0 * r.dk[k];
-          const double b1 = r.base[k] + si * r.di[k] + sj * r.dj[k] + s1 * r.dk[k];
-          const double slope = b1 - b0;
-          if (slope > 0)
-            u0 = std::max(u0, (-kTolerance - b0) / slope);
-          else if (slope < 0)
-            u1 = std::min(u1, (-kTolerance - b0) / slope);
-          else if (b0 < -kTolerance)
+          constexpr double kTolerance = 1e-6;
+          if (!r.finite)
+            return true; // scan the whole row
+          const double si = static_cast<double>(i - r.i0), sj = static_cast<double>(j - r.j0);
+          const double s0 = static_cast<double>(from - r.k0), s1 = static_cast<double>(to - r.k0);
+          // b_k is affine along the row: b_k(u) = b0 + u (b1 - b0), u in [0, 1] from `from` to
+          // `to`.
+          double u0 = 0, u1 = 1;
+          for (int k = 0; k < 4; ++k)
+          {
+            const double b0 = r.base[k] + si * r.di[k] + sj * r.dj[k] + s0 * r.dk[k];
+            const double b1 = r.base[k] + si * r.di[k] + sj * r.dj[k] + s1 * r.dk[k];
+            const double slope = b1 - b0;
+            if (slope > 0)
+              u0 = std::max(u0, (-kTolerance - b0) / slope);
+            else if (slope < 0)
+              u1 = std::min(u1, (-kTolerance - b0) / slope);
+            else if (b0 < -kTolerance)
+              return false;
+          }
+          if (!(u0 <= u1))
             return false;
-        }
-        if (!(u0 <= u1))
-          return false;
-        const double span = static_cast<double>(to - from);
-        rowFirst = std::max(from, from + static_cast<std::int64_t>(std::floor(u0 * span)) - 1);
-        rowLast = std::min(to, from + static_cast<std::int64_t>(std::ceil(u1 * span)) + 1);
-        return true;
-      };
-      const int levelLo = background ? 0 : levelOfSize(hlo);
-      const int levelHi = background ? 0 : levelOfSize(hhi);
-      for (int level = levelLo; level <= levelHi; ++level)
-      {
-        const LevelGeometry geometry = levelGeometry(level);
-        const double a = geometry.a;
-        const double* const origin = geometry.origin;
-        for (int sub = 0; sub < 2; ++sub)
+          const double span = static_cast<double>(to - from);
+          rowFirst = std::max(from, from + static_cast<std::int64_t>(std::floor(u0 * span)) - 1);
+          rowLast = std::min(to, from + static_cast<std::int64_t>(std::ceil(u1 * span)) + 1);
+          return true;
+        };
+        const int levelLo = background ? 0 : levelOfSize(hlo);
+        const int levelHi = background ? 0 : levelOfSize(hhi);
+        for (int level = levelLo; level <= levelHi; ++level)
         {
-          const double shift = sub ? 0.5 : 0.0;
-          double from[3], to[3];
-          double count[3];
-          bool keyable = true;
-          for (int k = 0; k < 3; ++k)
+          const LevelGeometry geometry = levelGeometry(level);
+          const double a = geometry.a;
+          const double* const origin = geometry.origin;
+          for (int sub = 0; sub < 2; ++sub)
           {
-            from[k] = std::ceil((bmin[k] - origin[k]) / a - shift);
-            to[k] = std::floor((bmax[k] - origin[k]) / a - shift);
-            keyable = keyable && to[k] < kMaxLatticeIndex; // false for NaN too
-            count[k] = std::max(to[k] - from[k] + 1, 0.0);
-          }
-          if (!keyable)
-            continue;
-          // The least this box costs: its rows when they are pruned, else all its positions.
-          const double rows = count[0] * count[1];
-          if (candidates + (pruneRows ? rows : rows * count[2]) > maxCandidates)
-          {
-            candidates = maxCandidates + 1;
-            break;
-          }
-          // Only now, in range (from >= -1, as bmin >= lo), convert to integers.
-          std::int64_t first[3], last[3];
-          for (int k = 0; k < 3; ++k)
-          {
-            first[k] = static_cast<std::int64_t>(from[k]);
-            last[k] = static_cast<std::int64_t>(to[k]);
-          }
-          const RowCoordinates rowCoords =
-            pruneRows ? rowCoordinates(shift, a, origin, first) : RowCoordinates{};
-          for (std::int64_t i = first[0]; i <= last[0] && candidates <= maxCandidates; ++i)
-            for (std::int64_t j = first[1]; j <= last[1]; ++j)
+            const double shift = sub ? 0.5 : 0.0;
+            double from[3], to[3];
+            double count[3];
+            bool keyable = true;
+            for (int k = 0; k < 3; ++k)
             {
-              std::int64_t kFirst = first[2], kLast = last[2];
-              candidates += 1;
-              if (pruneRows && !rowRange(rowCoords, i, j, first[2], last[2], kFirst, kLast))
-                continue;
-              candidates += static_cast<double>(std::max<std::int64_t>(kLast - kFirst + 1, 0));
-              for (std::int64_t k = kFirst; k <= kLast; ++k)
-              {
-                const std::uint64_t key = (static_cast<std::uint64_t>(level & 63) << 58) |
-                  (static_cast<std::uint64_t>(sub) << 57) |
-                  ((static_cast<std::uint64_t>(i) & 0x7FFFF) << 38) |
-                  ((static_cast<std::uint64_t>(j) & 0x7FFFF) << 19) |
-                  (static_cast<std::uint64_t>(k) & 0x7FFFF);
-                // A deterministic shift of up to +-latticeJitter/2 a per coordinate, hashed from
-                // the key (see the option).
-                double p[3] = { origin[0] + (i + shift) * a,
-                  origin[1] + (j + shift) * a,
-                  origin[2] + (k + shift) * a };
-                if (jitter > 0)
-                {
-                  std::uint64_t x = key * 0x9E3779B97F4A7C15ULL;
-                  for (int d = 0; d < 3; ++d)
-                  {
-                    x ^= x >> 29;
-                    x *= 0xBF58476D1CE4E5B9ULL;
-                    x ^= x >> 32;
-                    p[d] += jitter * a * ((x >> 11) * (1.0 / 9007199254740992.0) - 0.5);
-                  }
-                }
-                // Closed, with a margin: a point on a face shared by two tets is found from both
-                // (the key removes the duplicate), never from neither through rounding.
-                double b[4];
-                if (!barycentricCoordinates(p, corners, b) || b[0] < -1e-9 || b[1] < -1e-9 ||
-                  b[2] < -1e-9 || b[3] < -1e-9)
-                  continue;
-                double hp;
-                if (background)
-                {
-                  hp = background(p);
-                  if (!(hp > 0) || !std::isfinite(hp))
-                    continue;
-                  hp = boundToSurface(p, scaleAndClampSize(hp, sizeOptions));
-                  // One lattice only with a background field: where it matches.
-                  if (std::fabs(std::log(hp / a * options.latticeSpacing)) > 0.5 * logRatio)
-                    continue;
-                }
-                else
-                {
-                  hp = interpolateSizeWithCoordinates(b, hc, sizeOptions.interpolationPower);
-                  if (sizeOptions.minSize > 0)
-                    hp = std::max(hp, sizeOptions.minSize);
-                  if (sizeOptions.maxSize > 0)
-                    hp = std::min(hp, sizeOptions.maxSize);
-                  hp = boundToSurface(p, hp);
-                  if (levelOfSize(hp) != level)
-                    continue;
-                }
-                if (!taken.insert(key))
-                  continue;
-                points.push_back({ { p[0], p[1], p[2] },
-                  hp,
-                  t,
-                  { mesh.vertex(t, 0), mesh.vertex(t, 1), mesh.vertex(t, 2), mesh.vertex(t, 3) } });
-              }
+              from[k] = std::ceil((bmin[k] - origin[k]) / a - shift);
+              to[k] = std::floor((bmax[k] - origin[k]) / a - shift);
+              keyable = keyable && to[k] < kMaxLatticeIndex; // false for NaN too
+              count[k] = std::max(to[k] - from[k] + 1, 0.0);
             }
+            if (!keyable)
+              continue;
+            // The least this box costs: its rows when they are pruned, else all its positions.
+            const double rows = count[0] * count[1];
+            scan.peak = std::max(scan.peak, candidates + (pruneRows ? rows : rows * count[2]));
+            if (candidates + (pruneRows ? rows : rows * count[2]) > maxCandidates)
+            {
+              candidates = maxCandidates + 1;
+              break;
+            }
+            // Only now, in range (from >= -1, as bmin >= lo), convert to integers.
+            std::int64_t first[3], last[3];
+            for (int k = 0; k < 3; ++k)
+            {
+              first[k] = static_cast<std::int64_t>(from[k]);
+              last[k] = static_cast<std::int64_t>(to[k]);
+            }
+            const RowCoordinates rowCoords =
+              pruneRows ? rowCoordinates(shift, a, origin, first) : RowCoordinates{};
+            for (std::int64_t i = first[0]; i <= last[0] && candidates <= maxCandidates; ++i)
+              for (std::int64_t j = first[1]; j <= last[1]; ++j)
+              {
+                std::int64_t kFirst = first[2], kLast = last[2];
+                candidates += 1;
+                if (pruneRows && !rowRange(rowCoords, i, j, first[2], last[2], kFirst, kLast))
+                  continue;
+                candidates += static_cast<double>(std::max<std::int64_t>(kLast - kFirst + 1, 0));
+                for (std::int64_t k = kFirst; k <= kLast; ++k)
+                {
+                  const std::uint64_t key = (static_cast<std::uint64_t>(level & 63) << 58) |
+                    (static_cast<std::uint64_t>(sub) << 57) |
+                    ((static_cast<std::uint64_t>(i) & 0x7FFFF) << 38) |
+                    ((static_cast<std::uint64_t>(j) & 0x7FFFF) << 19) |
+                    (static_cast<std::uint64_t>(k) & 0x7FFFF);
+                  // A deterministic shift of up to +-latticeJitter/2 a per coordinate, hashed from
+                  // the key (see the option).
+                  double p[3] = { origin[0] + (i + shift) * a,
+                    origin[1] + (j + shift) * a,
+                    origin[2] + (k + shift) * a };
+                  if (jitter > 0)
+                  {
+                    std::uint64_t x = key * 0x9E3779B97F4A7C15ULL;
+                    for (int d = 0; d < 3; ++d)
+                    {
+                      x ^= x >> 29;
+                      x *= 0xBF58476D1CE4E5B9ULL;
+                      x ^= x >> 32;
+                      p[d] += jitter * a * ((x >> 11) * (1.0 / 9007199254740992.0) - 0.5);
+                    }
+                  }
+                  // Closed, with a margin: a point on a face shared by two tets is found from both
+                  // (the key removes the duplicate), never from neither through rounding.
+                  double b[4];
+                  if (!barycentricCoordinates(p, corners, b) || b[0] < -1e-9 || b[1] < -1e-9 ||
+                    b[2] < -1e-9 || b[3] < -1e-9)
+                    continue;
+                  double hp;
+                  if (background)
+                  {
+                    hp = background(p);
+                    if (!(hp > 0) || !std::isfinite(hp))
+                      continue;
+                    hp = boundToSurface(p, scaleAndClampSize(hp, sizeOptions));
+                    // One lattice only with a background field: where it matches.
+                    if (std::fabs(std::log(hp / a * options.latticeSpacing)) > 0.5 * logRatio)
+                      continue;
+                  }
+                  else
+                  {
+                    hp = interpolateSizeWithCoordinates(b, hc, sizeOptions.interpolationPower);
+                    if (sizeOptions.minSize > 0)
+                      hp = std::max(hp, sizeOptions.minSize);
+                    if (sizeOptions.maxSize > 0)
+                      hp = std::min(hp, sizeOptions.maxSize);
+                    hp = boundToSurface(p, hp);
+                    if (levelOfSize(hp) != level)
+                      continue;
+                  }
+                  scan.keys.push_back(key);
+                  scan.points.push_back({ { p[0], p[1], p[2] },
+                    hp,
+                    t,
+                    { mesh.vertex(t, 0),
+                      mesh.vertex(t, 1),
+                      mesh.vertex(t, 2),
+                      mesh.vertex(t, 3) } });
+                }
+              }
+          }
         }
+      }
+      scan.peak = std::max(scan.peak, candidates);
+    };
+    // The two halves of the tets side by side, kept when neither met the work bound where the
+    // scan of all tets would not have (the second half's counter starts at the first's total);
+    // else, and with a background field (a callback that may not be thread-safe), one scan.
+    LatticeScan all;
+    constexpr TetId kMinHalves = 4096;
+    bool scanned = false;
+    if (!background && initialTets >= kMinHalves && wantTwoThreads(0))
+    {
+      LatticeScan half[2];
+      const TetId middle = initialTets / 2;
+      runPair(true, [&](int k) { scanTets(k ? middle : 0, k ? initialTets : middle, half[k]); });
+      if (half[0].peak <= maxCandidates && half[0].candidates + half[1].peak <= maxCandidates)
+      {
+        all.points = std::move(half[0].points);
+        all.points.insert(all.points.end(), half[1].points.begin(), half[1].points.end());
+        all.keys = std::move(half[0].keys);
+        all.keys.insert(all.keys.end(), half[1].keys.begin(), half[1].keys.end());
+        scanned = true;
       }
     }
+    if (!scanned)
+      scanTets(0, initialTets, all);
+    for (std::size_t i = 0; i < all.points.size(); ++i)
+      if (taken.insert(all.keys[i]))
+        points.push_back(all.points[i]);
     result.latticeCandidateSeconds = lap();
     // Insertion order: BRIO rounds (HilbertSort.h), not one Hilbert sweep. A sweep fills the
     // domain front by front, and a point on the front conflicts with every not yet refined tet
