@@ -5,7 +5,7 @@
 #   scripts/sanitize.sh          # core: VTK-free core + every core test      (build-asan-core/)
 #   scripts/sanitize.sh vtk      # also the VTK module and its C++ tests      (build-asan/)
 #   scripts/sanitize.sh all      # both
-#   scripts/sanitize.sh threads  # the Delaunay kernel's tests under ThreadSanitizer (build-tsan/)
+#   scripts/sanitize.sh threads  # the two-thread insertion's tests under ThreadSanitizer (build-tsan/)
 #
 # Any sanitizer report fails the test that hit it (halt_on_error, also for UBSan). Leak
 # checking is on. Python and pvpython tests are not run here: their interpreters are not
@@ -61,17 +61,18 @@ vtk() {
     --cli-only $b/bin/tetmesher Testing/Data/defects
 }
 
-# The kernel inserts large rounds on two threads that must never touch the same tets: any
-# data race fails the test that hit it.
+# The kernel and the lattice prefill insert large rounds on two threads that must never touch
+# the same tets: any data race fails the test that hit it.
 threads() {
   local b=build-tsan
   phase "configure core (TSan)" cmake -S . -B $b -DTETMESHER_CORE_ONLY=ON \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS=-fsanitize=thread \
     -DCMAKE_EXE_LINKER_FLAGS=-fsanitize=thread >/dev/null
   phase "build kernel tests (TSan)" cmake --build $b -j"$jobs" --target CoreTestDelaunayHalves \
+    CoreTestLatticeHalves \
     CoreTestDelaunay
   phase "kernel tests (TSan)" ctest --test-dir $b \
-    --output-on-failure -j1 -R 'Core\.TestDelaunay' ${CTEST_ARGS:-}
+    --output-on-failure -j1 -R 'Core\.Test(Delaunay|LatticeHalves)' ${CTEST_ARGS:-}
 }
 
 case $what in

@@ -501,7 +501,14 @@ bool growCavityFast(TetMesh& mesh, VertexId v, TetId start, InsertionWorkspace& 
 // crossing a constrained face. Collects the boundary faces as collectBoundary would (cavity
 // order, faces in order) and tests on the way whether v sees each strictly: true when all
 // do, the usual case, where shrinkToStar would keep every tet for them.
-bool growCavityChecked(TetMesh& mesh, VertexId v, TetId start, InsertionWorkspace& ws)
+// Partitioned (start is the side's own): a neighbour with a vertex of the other side is
+// tested without a mark; if it is in conflict, the marks are undone and `crossed` set.
+template<bool Partitioned = false>
+bool growCavityChecked(TetMesh& mesh,
+  VertexId v,
+  TetId start,
+  InsertionWorkspace& ws,
+  bool* crossed = nullptr)
 {
   const double* coords = mesh.coords.data();
   const double* p = pointOf(coords, v);
@@ -526,6 +533,28 @@ bool growCavityChecked(TetMesh& mesh, VertexId v, TetId start, InsertionWorkspac
       {
         const TetId u = faceTet(n);
         constrained = constrained || ((flags[u] >> faceIndex(n)) & 1u);
+        if (Partitioned && !constrained && !(flags[u] & (kInCavity | kRejected)))
+        {
+          const VertexId* uv = tets + 4 * static_cast<std::size_t>(u);
+          if (!(ws.partition->owns(uv[0]) && ws.partition->owns(uv[1]) &&
+                ws.partition->owns(uv[2]) && ws.partition->owns(uv[3])))
+          {
+            if (predicates::insphereSoSFiltered(
+                  coords, uv[0], uv[1], uv[2], uv[3], v, ws.perturbationIds) > 0)
+            {
+              clearMarks(mesh, ws);
+              *crossed = true;
+              return false;
+            }
+            const VertexId* tv = tets + 4 * static_cast<std::size_t>(c);
+            ws.boundary.push_back(
+              { { tv[kFaceVertices[f][0]], tv[kFaceVertices[f][1]], tv[kFaceVertices[f][2]] },
+                n,
+                false });
+            allVisible = allVisible && faceOrient(mesh, coords, c, f, p) > 0;
+            continue;
+          }
+        }
         if (!constrained && !(flags[u] & (kInCavity | kRejected)))
         {
           const VertexId* uv = tets + 4 * static_cast<std::size_t>(u);
@@ -604,7 +633,6 @@ inline std::size_t directedEdgeHash(VertexId from, VertexId to, std::size_t mask
 template<bool Checked, bool Partitioned = false>
 TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
 {
-  static_assert(!(Checked && Partitioned), "partitioned insertion is unconstrained");
   const std::size_t faceCount = ws.boundary.size();
   // Edge table: at most 3*faceCount entries (fast mode stores both directions of each edge);
   // keep the load factor under 1/4.
@@ -703,6 +731,8 @@ TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
       mesh.tets[base + 1] = bf.v[1];
       mesh.tets[base + 2] = bf.v[2];
       mesh.tets[base + 3] = v;
+      for (int f = 0; f < 3; ++f) // faces not glued stay on the hull, as addTet leaves them
+        mesh.neighbors[base + f] = kNoNeighbor;
     }
     else
       t = mesh.addTet(bf.v[0], bf.v[1], bf.v[2], v);
@@ -807,10 +837,14 @@ TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
   return lastTet;
 }
 
-template<bool Checked>
+// Partitioned (checked mode, insertVertexInHalf): the walk and the cavity stay within the
+// side's tets (see insertSide), else the answer is Postponed and the mesh unchanged.
+template<bool Checked, bool Partitioned = false>
 InsertResult insertImpl(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspace& ws)
 {
   const double* p = mesh.point(v);
+  if (Partitioned && (hint < 0 || hint >= mesh.tetCapacity() || mesh.isDeleted(hint)))
+    return { InsertStatus::Postponed, -1, -1 };
   if (hint < 0 || hint >= mesh.tetCapacity() || mesh.isDeleted(hint))
   {
     hint = -1;
@@ -820,7 +854,9 @@ InsertResult insertImpl(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspac
     if (hint < 0)
       return { InsertStatus::OutsideMesh, -1, -1 };
   }
-  TetId t = walk(mesh, p, hint, ws.rng);
+  TetId t = walk<Partitioned>(mesh, p, hint, ws.rng, ws.partition);
+  if (Partitioned && t < 0)
+    return { InsertStatus::Postponed, -1, -1 };
   // A walk that reaches the hull proves p outside only for a convex triangulation (the box);
   // once exterior tets are gone the domain may be non-convex, so look everywhere.
   if (t < 0 && Checked)
@@ -834,6 +870,10 @@ InsertResult insertImpl(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspac
     if (q[0] == p[0] && q[1] == p[1] && q[2] == p[2])
       return { InsertStatus::Duplicate, t, w };
   }
+  if constexpr (Partitioned)
+    for (int k = 0; k < 4; ++k)
+      if (!ws.partition->owns(mesh.vertex(t, k)))
+        return { InsertStatus::Postponed, t, -1 };
   if (Checked)
   {
     const double* coords = mesh.coords.data();
@@ -843,7 +883,13 @@ InsertResult insertImpl(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspac
   }
   bool starShaped = false;
   if (Checked)
-    starShaped = growCavityChecked(mesh, v, t, ws) && noVertexSwallowed(mesh, ws);
+  {
+    bool crossed = false;
+    starShaped = growCavityChecked<Partitioned>(mesh, v, t, ws, &crossed);
+    if (Partitioned && crossed)
+      return { InsertStatus::Postponed, t, -1 };
+    starShaped = starShaped && noVertexSwallowed(mesh, ws);
+  }
   else
     growCavityFast(mesh, v, t, ws);
   if (Checked && !starShaped)
@@ -858,7 +904,15 @@ InsertResult insertImpl(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspac
   if (Checked)
     for (TetId r : ws.rejected)
       mesh.flags[r] = static_cast<std::uint8_t>(mesh.flags[r] & ~(kInCavity | kRejected));
-  const TetId created = fillCavity<Checked>(mesh, v, ws);
+  if constexpr (Partitioned)
+    if (ws.boundary.size() > ws.cavity.size() &&
+      ws.pool->available() < ws.boundary.size() - ws.cavity.size())
+    {
+      for (TetId c : ws.cavity)
+        mesh.flags[c] = static_cast<std::uint8_t>(mesh.flags[c] & ~(kInCavity | kRejected));
+      return { InsertStatus::Postponed, t, -1 };
+    }
+  const TetId created = fillCavity<Checked, Partitioned>(mesh, v, ws);
   return { InsertStatus::Inserted, created, -1 };
 }
 
@@ -938,6 +992,8 @@ void glueByMatching(TetMesh& mesh, const TetId* tets, int count)
 // Points per phase below which splitting is not worth starting threads and sizing ranges.
 constexpr std::size_t kMinHalvesPoints = 16384;
 
+} // namespace
+
 // Everything one side writes while inserting, on cache lines of its own: the two threads
 // would otherwise share lines (slot counters, hints) and stall each other on every insertion.
 struct alignas(64) Side
@@ -954,6 +1010,57 @@ struct Halves
 {
   Side side[2];
 };
+
+// Gives each side a private range of tet slots (side 0 also the mesh's free slots), about
+// `slots` each; a side that runs out postpones its remaining points. Side 1's range ends the
+// arrays, so what it leaves unused is cut off by closeSlotRanges.
+void openSlotRanges(TetMesh& mesh, Side* side, std::size_t slots0, std::size_t slots1)
+{
+  const TetId first = mesh.tetCapacity();
+  const TetId size0 = static_cast<TetId>(slots0 + 1024);
+  const TetId size1 = static_cast<TetId>(slots1 + 1024);
+  const std::size_t total = static_cast<std::size_t>(first) + size0 + size1;
+  if (4 * total > mesh.tets.capacity())
+  {
+    mesh.tets.reserve(4 * (total + total / 16));
+    mesh.neighbors.reserve(4 * (total + total / 16));
+    mesh.flags.reserve(total + total / 16);
+  }
+  // Not filled (FlatArray): each side writes the slots it takes, so the fresh pages are first
+  // touched by the thread that uses them.
+  mesh.tets.resize(4 * total);
+  mesh.neighbors.resize(4 * total);
+  mesh.flags.resize(total);
+  side[0].pool.freed = std::move(mesh.freeTets);
+  mesh.freeTets.clear();
+  side[0].pool.next = first;
+  side[0].pool.end = first + size0;
+  side[1].pool.freed.clear();
+  side[1].pool.next = first + size0;
+  side[1].pool.end = static_cast<TetId>(total);
+}
+
+// The slots the sides did not use go back: side 1's unused end is cut off, the rest of the
+// ranges and the freed slots go to the free list.
+void closeSlotRanges(TetMesh& mesh, Side* side)
+{
+  mesh.tets.resize(4 * static_cast<std::size_t>(side[1].pool.next));
+  mesh.neighbors.resize(4 * static_cast<std::size_t>(side[1].pool.next));
+  mesh.flags.resize(static_cast<std::size_t>(side[1].pool.next));
+  mesh.freeTets = std::move(side[0].pool.freed);
+  for (TetId t = side[0].pool.next; t < side[0].pool.end; ++t)
+  {
+    mesh.tets[4 * static_cast<std::size_t>(t)] = kDeletedTet;
+    mesh.flags[t] = 0;
+    mesh.freeTets.push_back(t);
+  }
+  mesh.freeTets.insert(mesh.freeTets.end(), side[1].pool.freed.begin(), side[1].pool.freed.end());
+  side[0].pool.freed.clear();
+  side[1].pool.freed.clear();
+}
+
+namespace
+{
 
 // Inserts the pending points (renumbered ids, ascending) in two halves of space, split at
 // the median of their longest extent, one half per thread; pending becomes the points either
@@ -1006,31 +1113,8 @@ void insertInHalves(TetMesh& mesh,
       return;
   }
 
-  // Slots: each side gets a private range of 7 tets per point (an insertion adds 6.7 on
-  // average in a Delaunay mesh); a side that runs out postpones its remaining points. Side 1's
-  // range ends the arrays, so what it leaves unused is cut off afterwards.
-  const TetId first = mesh.tetCapacity();
-  const TetId size0 = static_cast<TetId>(7 * side[0].points.size() + 1024);
-  const TetId size1 = static_cast<TetId>(7 * side[1].points.size() + 1024);
-  const std::size_t total = static_cast<std::size_t>(first) + size0 + size1;
-  if (4 * total > mesh.tets.capacity())
-  {
-    mesh.tets.reserve(4 * (total + total / 16));
-    mesh.neighbors.reserve(4 * (total + total / 16));
-    mesh.flags.reserve(total + total / 16);
-  }
-  // Not filled (FlatArray): each side writes the slots it takes, so the fresh pages are first
-  // touched by the thread that uses them.
-  mesh.tets.resize(4 * total);
-  mesh.neighbors.resize(4 * total);
-  mesh.flags.resize(total);
-  side[0].pool.freed = std::move(mesh.freeTets);
-  mesh.freeTets.clear();
-  side[0].pool.next = first;
-  side[0].pool.end = first + size0;
-  side[1].pool.freed.clear();
-  side[1].pool.next = first + size0;
-  side[1].pool.end = static_cast<TetId>(total);
+  // 7 slots per point: an insertion adds 6.7 tets on average in a Delaunay mesh.
+  openSlotRanges(mesh, side, 7 * side[0].points.size(), 7 * side[1].points.size());
 
   auto work = [&mesh, side, coords, axis, split, &mainWs](int k)
   {
@@ -1057,18 +1141,7 @@ void insertInHalves(TetMesh& mesh,
   };
   runPair(twoThreads, work);
 
-  mesh.tets.resize(4 * static_cast<std::size_t>(side[1].pool.next));
-  mesh.neighbors.resize(4 * static_cast<std::size_t>(side[1].pool.next));
-  mesh.flags.resize(static_cast<std::size_t>(side[1].pool.next));
-  mesh.freeTets = std::move(side[0].pool.freed);
-  for (TetId t = side[0].pool.next; t < side[0].pool.end; ++t)
-  {
-    mesh.tets[4 * static_cast<std::size_t>(t)] = kDeletedTet;
-    mesh.flags[t] = 0;
-    mesh.freeTets.push_back(t);
-  }
-  mesh.freeTets.insert(mesh.freeTets.end(), side[1].pool.freed.begin(), side[1].pool.freed.end());
-  side[0].pool.freed.clear();
+  closeSlotRanges(mesh, side);
   hint = side[1].hint;
   for (int k = 0; k < 2; ++k)
     duplicates.insert(duplicates.end(), side[k].duplicates.begin(), side[k].duplicates.end());
@@ -1081,6 +1154,65 @@ void insertInHalves(TetMesh& mesh,
 }
 
 } // namespace
+
+struct MeshHalves::State
+{
+  TetMesh* mesh = nullptr;
+  Halves halves;
+  bool open = false;
+};
+
+MeshHalves::MeshHalves(TetMesh& mesh,
+  int axis,
+  double split,
+  std::size_t points0,
+  std::size_t points1,
+  std::size_t slotsPerPoint)
+  : state_(std::make_unique<State>())
+{
+  state_->mesh = &mesh;
+  Side* side = state_->halves.side;
+  for (int k = 0; k < 2; ++k)
+  {
+    side[k].partition = { mesh.coords.data(), axis, split, k == 0 };
+    side[k].ws.partition = &side[k].partition;
+    side[k].ws.pool = &side[k].pool;
+  }
+  openSlotRanges(mesh, side, slotsPerPoint * points0, slotsPerPoint * points1);
+  state_->open = true;
+}
+
+MeshHalves::~MeshHalves()
+{
+  finish();
+}
+
+bool MeshHalves::owns(int side, VertexId v) const
+{
+  return state_->halves.side[side].partition.owns(v);
+}
+
+TetId MeshHalves::locate(int side, const double* p, TetId hint)
+{
+  const TetMesh& mesh = *state_->mesh;
+  if (hint < 0 || hint >= mesh.tetCapacity() || mesh.isDeleted(hint))
+    return kPostponed;
+  Side& me = state_->halves.side[side];
+  return walk<true>(mesh, p, hint, me.ws.rng, &me.partition);
+}
+
+InsertResult MeshHalves::insert(int side, VertexId v, TetId hint)
+{
+  return insertImpl<true, true>(*state_->mesh, v, hint, state_->halves.side[side].ws);
+}
+
+void MeshHalves::finish()
+{
+  if (!state_->open)
+    return;
+  closeSlotRanges(*state_->mesh, state_->halves.side);
+  state_->open = false;
+}
 
 InsertResult insertVertex(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspace& workspace)
 {

@@ -4,6 +4,7 @@
 
 #include "TetMesh.h"
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -53,7 +54,8 @@ enum class InsertStatus
   Inserted,
   Duplicate,    // an existing vertex has the same coordinates
   OnConstraint, // the point lies exactly on a constrained face: not inserted
-  OutsideMesh   // the walk left the triangulation (point outside the box)
+  OutsideMesh,  // the walk left the triangulation (point outside the box)
+  Postponed     // MeshHalves: the walk or the cavity would reach the other side's tets
 };
 
 struct InsertResult
@@ -81,5 +83,42 @@ TetId locatePoint(const TetMesh& mesh, const double* p, TetId hint);
 // The same walk without the exhaustive search: -1 when it reaches the hull of the mesh (p
 // outside, or a non-convex mesh between hint and p) or when hint is not a live tet.
 TetId walkToPoint(const TetMesh& mesh, const double* p, TetId hint);
+
+// Two threads inserting into one (constrained) mesh, for callers that choose the points as
+// they go (InteriorRefinement's lattice), as buildDelaunay's halves do. Side 0 owns the
+// vertices whose coordinate `axis` is below `split`, side 1 the others, and a tet is a side's
+// when its 4 vertices are. Between construction and finish(), side k may call locate(k, ...)
+// and insert(k, ...) only, from one thread per side; they answer Postponed (leaving the mesh
+// unchanged) where the walk would cross a face of the other side's vertices alone or the
+// cavity would take a tet that is not the side's own. Nothing else may touch the mesh then.
+// Each side reads nothing the other writes: the result does not depend on the threads'
+// timing. New tets take slots from a private range per side, about slotsPerPoint * points.
+class MeshHalves
+{
+public:
+  MeshHalves(TetMesh& mesh,
+    int axis,
+    double split,
+    std::size_t points0,
+    std::size_t points1,
+    std::size_t slotsPerPoint = 8);
+  ~MeshHalves();
+  MeshHalves(const MeshHalves&) = delete;
+  MeshHalves& operator=(const MeshHalves&) = delete;
+
+  bool owns(int side, VertexId v) const;
+  // The tet containing p, walking from hint (a live tet that is the side's or has a vertex of
+  // the side); -1 when the walk reaches the hull, -2 when it would leave the side's tets.
+  TetId locate(int side, const double* p, TetId hint);
+  // insertVertex for side k: v's coordinates must be in mesh.coords (their size fixed
+  // beforehand). Returns Postponed instead of touching the other side's tets.
+  InsertResult insert(int side, VertexId v, TetId hint);
+  // Returns the unused slots to the mesh (its free list); the mesh is an ordinary one again.
+  void finish();
+
+private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 } // namespace tetmesher

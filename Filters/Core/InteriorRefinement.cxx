@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -1041,6 +1042,182 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     return inserted.tet;
   };
 
+  // Insertion in two halves of space side by side (MeshHalves, Delaunay.h), for the large
+  // rounds of the lattice and of the edge splitting. The caller splits its points at the median
+  // of their longest extent and keeps for the rest, inserted in order afterwards, those closer
+  // to the split than the largest distance at which two new points can refuse each other
+  // (ratio * the largest h a side will insert). Then neither side's proximity test depends on
+  // the other's points: each tests the vertices from before (the shared grid, read only
+  // meanwhile) and its own new ones (a grid of its own). Each side numbers its vertices from a
+  // range of ids of its own; the ranges are closed up afterwards, and the new vertices enter
+  // the shared grid in that order. Points a side postponed (its walk or cavity would reach the
+  // other side's tets) go to the rest. The mesh does not depend on the number of threads.
+  const std::size_t minHalvesPoints = options.halvesMinPoints > 0
+    ? static_cast<std::size_t>(options.halvesMinPoints)
+    : std::numeric_limits<std::size_t>::max();
+  const double proximityRatio = std::max(options.minPointDistance, 1e-3);
+  struct HalfState
+  {
+    std::vector<std::size_t> items, postponed; // the caller's indices
+    VertexId firstId = 0, accepted = 0;
+    TetId hint = -1;
+    int nearVertex = 0, nearBoundary = 0, byKernel = 0;
+    std::vector<TetId> star;
+    std::unique_ptr<ProximityGrid> grid;
+    std::unordered_map<std::uint64_t, std::array<double, 3>> outside; // edge splitting's
+  };
+  struct HalvesPhase
+  {
+    HalfState side[2];
+    VertexId base = 0;
+    std::unique_ptr<MeshHalves> halves;
+    std::atomic<bool> abort{ false };
+  };
+  // The axis of the longest extent of `count` points and their median along it.
+  auto medianSplit = [](std::size_t count, const auto& pointOf, int& axis, double& split)
+  {
+    double lo3[3], hi3[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      lo3[k] = std::numeric_limits<double>::max();
+      hi3[k] = std::numeric_limits<double>::lowest();
+    }
+    for (std::size_t i = 0; i < count; ++i)
+      for (int k = 0; k < 3; ++k)
+      {
+        lo3[k] = std::min(lo3[k], pointOf(i)[k]);
+        hi3[k] = std::max(hi3[k], pointOf(i)[k]);
+      }
+    axis = 0;
+    for (int k = 1; k < 3; ++k)
+      if (hi3[k] - lo3[k] > hi3[axis] - lo3[axis])
+        axis = k;
+    std::vector<double> values(count);
+    for (std::size_t i = 0; i < count; ++i)
+      values[i] = pointOf(i)[axis];
+    std::nth_element(
+      values.begin(), values.begin() + static_cast<std::ptrdiff_t>(count / 2), values.end());
+    split = values[count / 2];
+  };
+  // Sizes the arrays for the sides' vertices (each side's item count) and opens the halves.
+  auto beginHalves = [&](HalvesPhase& phase, int axis, double split)
+  {
+    phase.base = mesh.vertexCount();
+    phase.side[0].firstId = phase.base;
+    phase.side[1].firstId = phase.base + static_cast<VertexId>(phase.side[0].items.size());
+    const std::size_t vertices =
+      static_cast<std::size_t>(phase.side[1].firstId) + phase.side[1].items.size();
+    mesh.coords.resize(3 * vertices);
+    h.resize(vertices, 0.0);
+    vertexTet.resize(vertices, -1);
+    phase.halves = std::make_unique<MeshHalves>(
+      mesh, axis, split, phase.side[0].items.size(), phase.side[1].items.size());
+    region.resize(static_cast<std::size_t>(mesh.tetCapacity()), -1);
+    if (checkProximity)
+      for (HalfState& me : phase.side)
+        me.grid = std::make_unique<ProximityGrid>(minH, proximityRatio, lo, me.items.size());
+  };
+  // refused() for a side.
+  auto refusedOnSide = [&](HalfState& me, const double* p, double hp, double boundaryDistance)
+  {
+    if (checkProximity && (grid.hasNear(p, hp, h) || me.grid->hasNear(p, hp, h)))
+    {
+      ++me.nearVertex;
+      return true;
+    }
+    if (boundaryDistance > 0 && faces->near(mesh, p, boundaryDistance * hp))
+    {
+      ++me.nearBoundary;
+      return true;
+    }
+    return false;
+  };
+  // tryInsert() for a side, the proximity already tested.
+  auto insertOnSide =
+    [&](HalvesPhase& phase, int k, const double* p, double hp, TetId container, std::int32_t r)
+    -> InsertStatus
+  {
+    HalfState& me = phase.side[k];
+    const VertexId v = me.firstId + me.accepted;
+    std::copy(p, p + 3, &mesh.coords[3 * static_cast<std::size_t>(v)]);
+    h[v] = hp;
+    const InsertResult inserted = phase.halves->insert(k, v, container);
+    if (inserted.status == InsertStatus::Postponed)
+      return inserted.status;
+    if (inserted.status != InsertStatus::Inserted)
+    {
+      ++me.byKernel;
+      return inserted.status;
+    }
+    ++me.accepted;
+    starOf(mesh, inserted.tet, v, me.star); // the star of a new vertex is the side's own
+    for (TetId u : me.star)
+    {
+      region[u] = r;
+      for (int i = 0; i < 4; ++i)
+        vertexTet[mesh.vertex(u, i)] = u;
+    }
+    if (checkProximity)
+      me.grid->insert(v, p, hp);
+    me.hint = inserted.tet;
+    // Progress from the caller's thread only (a GUI's callback), counting both sides.
+    if (k == 0 && (me.accepted & 1023) == 0 && progress)
+    {
+      const double fraction = std::min(0.99,
+        (result.insertedPoints + 2.0 * me.accepted) /
+          std::max(1.0, result.estimatedPoints - initialCount));
+      if (!progress(fraction))
+        phase.abort = true;
+    }
+    return InsertStatus::Inserted;
+  };
+  // Closes the halves: ids closed up, new vertices into the shared grid, counters; the items
+  // the sides postponed are added to `rest`, which is sorted. Returns the points inserted.
+  auto endHalves = [&](HalvesPhase& phase, std::vector<std::size_t>& rest)
+  {
+    phase.halves->finish();
+    region.resize(static_cast<std::size_t>(mesh.tetCapacity()), -1);
+    const VertexId gap = static_cast<VertexId>(phase.side[0].items.size()) - phase.side[0].accepted;
+    const VertexId firstOne = phase.side[1].firstId;
+    if (gap > 0 && phase.side[1].accepted > 0)
+    {
+      for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+        if (!mesh.isDeleted(t))
+          for (int i = 0; i < 4; ++i)
+          {
+            VertexId& w = mesh.tets[4 * static_cast<std::size_t>(t) + i];
+            if (w >= firstOne)
+              w -= gap;
+          }
+      for (VertexId v = firstOne; v < firstOne + phase.side[1].accepted; ++v)
+      {
+        std::copy(&mesh.coords[3 * static_cast<std::size_t>(v)],
+          &mesh.coords[3 * static_cast<std::size_t>(v)] + 3,
+          &mesh.coords[3 * static_cast<std::size_t>(v - gap)]);
+        h[v - gap] = h[v];
+        vertexTet[v - gap] = vertexTet[v];
+      }
+    }
+    const VertexId inserted = phase.side[0].accepted + phase.side[1].accepted;
+    const std::size_t kept = static_cast<std::size_t>(phase.base + inserted);
+    mesh.coords.resize(3 * kept);
+    h.resize(kept);
+    vertexTet.resize(kept);
+    if (checkProximity)
+      for (VertexId v = phase.base; v < static_cast<VertexId>(kept); ++v)
+        grid.insert(v, mesh.point(v), h[v]);
+    for (const HalfState& me : phase.side)
+    {
+      result.rejectedNearVertex += me.nearVertex;
+      result.rejectedNearBoundary += me.nearBoundary;
+      result.rejectedByKernel += me.byKernel;
+      rest.insert(rest.end(), me.postponed.begin(), me.postponed.end());
+    }
+    result.insertedPoints += inserted;
+    std::sort(rest.begin(), rest.end());
+    return inserted;
+  };
+
   if (options.latticeSpacing > 0)
   {
     // Lattice prefill: body-centred cubic points (the cube corners and centres of a grid of
@@ -1394,18 +1571,28 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     latticeCoords.reserve(3 * points.size());
     for (const LatticePoint& q : points)
       latticeCoords.insert(latticeCoords.end(), q.p, q.p + 3);
-    const std::vector<VertexId> insertionOrder =
-      brioOrder(latticeCoords.data(), static_cast<VertexId>(points.size()));
+    std::vector<std::size_t> roundStarts;
+    const std::vector<VertexId> insertionOrder = brioOrder(
+      latticeCoords.data(), static_cast<VertexId>(points.size()), 0x5eed5eedULL, &roundStarts);
     // The initial tets are deleted as points go in: remember their regions.
     std::vector<std::int32_t> initialRegion(region.begin(), region.begin() + initialTets);
     TetId hint = -1;
-    for (const VertexId index : insertionOrder)
+    bool stop = false, aborted = false;
+    auto reportProgress = [&](double inserted)
     {
-      const LatticePoint& q = points[static_cast<std::size_t>(index)];
+      const double fraction =
+        std::min(0.99, inserted / std::max(1.0, result.estimatedPoints - initialCount));
+      return !progress || progress(fraction);
+    };
+    // One point of insertionOrder, in order (the rounds' small ones, and what the halves left).
+    auto insertInOrder = [&](std::size_t position)
+    {
+      const LatticePoint& q = points[static_cast<std::size_t>(insertionOrder[position])];
       if (result.insertedPoints >= budget)
       {
         result.budgetReached = true;
-        break;
+        stop = true;
+        return;
       }
       // Walk from the last insertion (close: each round is Hilbert-sorted), else from the corners
       // of the initial tet that contained q (the segment from a corner to q lies in that tet, so
@@ -1414,29 +1601,116 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       // points are refused there (fine cube: 29k next to the faces for 40k inserted), and
       // then need no walk. The same points go in: neither test depends on the container.
       if (refused(q.p, q.h, options.latticeBoundaryDistance))
-        continue;
+        return;
       TetId container = walkToPoint(mesh, q.p, hint);
       for (int i = 0; i < 4 && container < 0; ++i)
         container = walkToPoint(mesh, q.p, vertexTet[q.corner[i]]);
       if (container < 0)
         container = locatePoint(mesh, q.p, q.tet);
       if (container < 0 || region[container] != initialRegion[q.tet])
-        continue;
+        return;
       const TetId made =
         tryInsert(q.p, container, q.h, initialRegion[q.tet], options.latticeBoundaryDistance, true);
       if (made < 0)
-        continue;
+        return;
       hint = made;
       ++result.insertedPoints;
       ++result.latticePoints;
-      if (progress && (result.insertedPoints & 1023) == 0)
+      if ((result.insertedPoints & 1023) == 0 && !reportProgress(result.insertedPoints))
+        stop = aborted = true;
+    };
+
+    // Large rounds go in two halves of space side by side (HalvesPhase above).
+    auto insertInHalves = [&](std::size_t begin, std::size_t end, std::vector<std::size_t>& rest)
+    {
+      auto pointAt = [&](std::size_t i) -> const LatticePoint&
+      { return points[static_cast<std::size_t>(insertionOrder[i])]; };
+      int axis = 0;
+      double split = 0;
+      medianSplit(
+        end - begin, [&](std::size_t i) { return pointAt(begin + i).p; }, axis, split);
+      double hmax = 0;
+      for (std::size_t i = begin; i < end; ++i)
+        hmax = std::max(hmax, pointAt(i).h);
+      const double margin = checkProximity ? proximityRatio * hmax * (1 + 1e-6) : 0.0;
+      HalvesPhase phase;
+      for (std::size_t i = begin; i < end; ++i)
       {
-        const double fraction = std::min(
-          0.99, result.insertedPoints / std::max(1.0, result.estimatedPoints - initialCount));
-        if (!progress(fraction))
-          return finish(false, "refineInterior: aborted");
+        const double c = pointAt(i).p[axis];
+        if (!(std::fabs(c - split) > margin))
+          rest.push_back(i);
+        else
+          phase.side[c < split ? 0 : 1].items.push_back(i);
       }
+      // Each side starts from the tet holding its first point: that tet has a vertex of the
+      // side (the point is strictly inside the side's half), so it is never the other's alone.
+      for (HalfState& me : phase.side)
+      {
+        if (me.items.empty())
+          return false;
+        const LatticePoint& q = pointAt(me.items[0]);
+        me.hint = walkToPoint(mesh, q.p, hint);
+        for (int i = 0; i < 4 && me.hint < 0; ++i)
+          me.hint = walkToPoint(mesh, q.p, vertexTet[q.corner[i]]);
+        if (me.hint < 0)
+          me.hint = locatePoint(mesh, q.p, q.tet);
+        if (me.hint < 0)
+          return false;
+      }
+      beginHalves(phase, axis, split);
+      auto work = [&](int k)
+      {
+        HalfState& me = phase.side[k];
+        for (std::size_t item : me.items)
+        {
+          if (phase.abort.load(std::memory_order_relaxed))
+            break;
+          const LatticePoint& q = pointAt(item);
+          if (refusedOnSide(me, q.p, q.h, options.latticeBoundaryDistance))
+            continue;
+          const TetId container = phase.halves->locate(k, q.p, me.hint);
+          if (container < 0)
+          {
+            me.postponed.push_back(item);
+            continue;
+          }
+          if (region[container] != initialRegion[q.tet])
+            continue;
+          if (insertOnSide(phase, k, q.p, q.h, container, initialRegion[q.tet]) ==
+            InsertStatus::Postponed)
+            me.postponed.push_back(item);
+        }
+      };
+      runPair(wantTwoThreads(0), work);
+      const VertexId inserted = endHalves(phase, rest);
+      result.latticePoints += inserted;
+      result.latticeHalvesPoints += inserted;
+      hint = phase.side[1].hint;
+      if (phase.abort)
+        stop = aborted = true;
+      return true;
+    };
+
+    std::vector<std::size_t> rest;
+    for (std::size_t r = 0; r < roundStarts.size() && !stop; ++r)
+    {
+      const std::size_t begin = roundStarts[r];
+      const std::size_t end = r + 1 < roundStarts.size() ? roundStarts[r + 1] : points.size();
+      rest.clear();
+      const bool halves = end - begin >= minHalvesPoints &&
+        result.insertedPoints + static_cast<double>(end - begin) < budget &&
+        (options.latticeBoundaryDistance <= 0 || faces) && insertInHalves(begin, end, rest);
+      if (!halves)
+      {
+        rest.clear();
+        for (std::size_t i = begin; i < end; ++i)
+          rest.push_back(i);
+      }
+      for (std::size_t i = 0; i < rest.size() && !stop; ++i)
+        insertInOrder(rest[i]);
     }
+    if (aborted)
+      return finish(false, "refineInterior: aborted");
   }
 
   result.latticeInsertSeconds = lap();
@@ -1451,6 +1725,122 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   // only adds edges at the new vertex), so the sizes come out the same as from every vertex.
   VertexId gradedCount = 0;
   std::vector<VertexId> seeds, seedStamp;
+  bool aborted = false;
+  // findEdge for a side: the star of a without scratch marks (the other side may read the
+  // flags of shared tets), in the same order; a's star is the side's or shared, as a is its.
+  auto findEdgeOnSide = [&](HalfState& me, VertexId a, VertexId b, TetId hint) -> TetId
+  {
+    if (hint >= 0 && hint < mesh.tetCapacity() && !mesh.isDeleted(hint) && tetHas(mesh, hint, a) &&
+      tetHas(mesh, hint, b))
+      return hint;
+    const TetId t = vertexTet[a];
+    if (t < 0 || mesh.isDeleted(t) || !tetHas(mesh, t, a))
+      return -1;
+    me.star.clear();
+    me.star.push_back(t);
+    for (std::size_t i = 0; i < me.star.size(); ++i)
+    {
+      const TetId u = me.star[i];
+      for (int f = 0; f < 4; ++f)
+      {
+        if (mesh.vertex(u, f) == a)
+          continue; // the face opposite a does not contain a
+        const FaceRef n = mesh.neighbor(u, f);
+        if (n != kNoNeighbor &&
+          std::find(me.star.begin(), me.star.end(), faceTet(n)) == me.star.end())
+          me.star.push_back(faceTet(n));
+      }
+    }
+    for (TetId u : me.star)
+      if (tetHas(mesh, u, b))
+        return u;
+    return -1;
+  };
+  // One edge-splitting round's candidates in two halves (see HalvesPhase): a side takes the
+  // edges with both ends on its side, the split point farther from the split than the margin,
+  // and a size at most hmax (the margin's; a larger one is postponed).
+  auto splitInHalves =
+    [&](const std::vector<Candidate>& items, std::vector<std::size_t>& rest, int& insertedThisRound)
+  {
+    std::vector<std::array<double, 3>> at(items.size());
+    for (std::size_t i = 0; i < items.size(); ++i)
+      splitPoint(items[i].a, items[i].b, at[i].data());
+    int axis = 0;
+    double split = 0;
+    medianSplit(
+      items.size(), [&](std::size_t i) { return at[i].data(); }, axis, split);
+    double hmax = 0;
+    for (double hv : h)
+      hmax = std::max(hmax, hv);
+    const double margin = checkProximity ? proximityRatio * hmax * (1 + 1e-6) : 0.0;
+    HalvesPhase phase;
+    for (std::size_t i = 0; i < items.size(); ++i)
+    {
+      const int sideOfA = mesh.point(items[i].a)[axis] < split ? 0 : 1;
+      const int sideOfB = mesh.point(items[i].b)[axis] < split ? 0 : 1;
+      if (sideOfA != sideOfB || !(std::fabs(at[i][axis] - split) > margin))
+        rest.push_back(i);
+      else
+        phase.side[sideOfA].items.push_back(i);
+    }
+    if (phase.side[0].items.empty() || phase.side[1].items.empty())
+      return false;
+    beginHalves(phase, axis, split);
+    auto work = [&](int k)
+    {
+      HalfState& me = phase.side[k];
+      for (std::size_t item : me.items)
+      {
+        if (phase.abort.load(std::memory_order_relaxed))
+          break;
+        const Candidate& c = items[item];
+        const TetId t = findEdgeOnSide(me, c.a, c.b, c.tet);
+        if (t < 0)
+          continue; // the edge is gone: a point inserted this round took its place
+        const double* p = at[item].data();
+        const std::uint64_t key = edgeKey(c.a, c.b);
+        const auto shared = outsideSplits.find(key);
+        if (shared != outsideSplits.end() && std::equal(p, p + 3, shared->second.begin()))
+          continue;
+        const auto own = me.outside.find(key);
+        if (own != me.outside.end() && std::equal(p, p + 3, own->second.begin()))
+          continue;
+        const TetId container = phase.halves->locate(k, p, t);
+        if (container == -1)
+        {
+          me.outside[key] = { p[0], p[1], p[2] };
+          continue;
+        }
+        if (container < 0)
+        {
+          me.postponed.push_back(item);
+          continue;
+        }
+        if (region[container] != region[t])
+          continue;
+        const double hp = sizeAt(p, container, 0.5 * (h[c.a] + h[c.b]));
+        if (!(hp <= hmax))
+        {
+          me.postponed.push_back(item);
+          continue;
+        }
+        if (refusedOnSide(me, p, hp, options.minBoundaryDistance))
+          continue;
+        if (insertOnSide(phase, k, p, hp, container, region[t]) == InsertStatus::Postponed)
+          me.postponed.push_back(item);
+      }
+    };
+    runPair(wantTwoThreads(0), work);
+    const VertexId inserted = endHalves(phase, rest);
+    insertedThisRound += inserted;
+    result.splitHalvesPoints += inserted;
+    for (const HalfState& me : phase.side)
+      for (const auto& [key, p] : me.outside)
+        outsideSplits[key] = p;
+    if (phase.abort)
+      aborted = true;
+    return true;
+  };
   for (int round = 0; round < options.maxRounds; ++round)
   {
     if (round > 0 || result.latticePoints > 0)
@@ -1518,8 +1908,24 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       [](const Candidate& x, const Candidate& y)
       { return x.order != y.order ? x.order < y.order : (x.a != y.a ? x.a < y.a : x.b < y.b); });
     int insertedThisRound = 0;
-    for (const Candidate& c : candidates)
+    // Large rounds: in two halves of space first (HalvesPhase above), for the candidates
+    // whose edge has both ends on one side; the others, and what the sides postponed, in
+    // order afterwards. Not with a background field: a callback that may not be thread-safe.
+    std::vector<std::size_t> rest;
+    if (!(candidates.size() >= minHalvesPoints && !background &&
+          result.insertedPoints + static_cast<double>(candidates.size()) < budget &&
+          (options.minBoundaryDistance <= 0 || faces) &&
+          splitInHalves(candidates, rest, insertedThisRound)))
     {
+      rest.resize(candidates.size());
+      for (std::size_t i = 0; i < rest.size(); ++i)
+        rest[i] = i;
+    }
+    if (aborted)
+      return finish(false, "refineInterior: aborted");
+    for (std::size_t index : rest)
+    {
+      const Candidate& c = candidates[index];
       if (result.insertedPoints >= budget)
       {
         result.budgetReached = true;

@@ -71,6 +71,10 @@ struct RefinementOptions
   double ceilingRatio = 1.2;
   // Bound on the number of rounds (each round splits the edges too long at its start).
   int maxRounds = 200;
+  // Lattice rounds and edge-splitting rounds of at least this many points are inserted in two
+  // halves of space side by side, on two threads where the machine has two CPUs (the mesh is
+  // the same on one); fewer points, and 0, in one sequence.
+  int halvesMinPoints = 16384;
   // Refuse (ok = false, before inserting any point) when the estimated memory of the refined
   // mesh exceeds this many bytes (MemoryBudget.h); <= 0: no memory check. Meshes beyond the
   // 32-bit indices (2^29 tets) are always refused. The VTK filter and the CLI pass the memory
@@ -90,6 +94,8 @@ struct RefinementResult
   int rejectedNearBoundary = 0; // ... too close to a constrained face
   int rejectedByKernel = 0;     // ... refused by insertVertex (on a constraint, duplicate)
   int latticePoints = 0;        // inserted points that came from the lattice prefill
+  int latticeHalvesPoints = 0;  // of those, inserted by the two halves (MeshHalves)
+  int splitHalvesPoints = 0;    // edge-splitting points inserted by the two halves
   double estimatedPoints = 0;   // integral of sqrt(2)/h^3 over the initial mesh (see .cxx)
   // Wall time of the parts: sizes, estimate and search grids; lattice candidates; lattice
   // insertion; edge-splitting rounds.

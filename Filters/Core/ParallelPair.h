@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdlib>
 #include <exception>
 #include <system_error>
 #include <thread>
@@ -12,10 +13,18 @@ namespace tetmesher
 {
 
 // True when a second thread is worth starting: `threads` as DelaunayOptions::threads (0:
-// when the machine has two CPUs or more).
+// when the machine has two CPUs or more, unless the environment variable TETMESHER_THREADS is
+// 1; read on every call, so that a test can set it).
 inline bool wantTwoThreads(int threads)
 {
-  return threads == 0 ? std::thread::hardware_concurrency() >= 2 : threads >= 2;
+  if (threads == 0)
+  {
+    const char* setting = std::getenv("TETMESHER_THREADS");
+    if (setting && std::atoi(setting) == 1)
+      return false;
+    return std::thread::hardware_concurrency() >= 2;
+  }
+  return threads >= 2;
 }
 
 // Runs work(0) and work(1): on two threads when twoThreads (and a thread can be started),
