@@ -1301,11 +1301,22 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       std::vector<LatticePoint> points;
       std::vector<std::uint64_t> keys;
     };
-    auto scanTets = [&](TetId tBegin, TetId tEnd, LatticeScan& scan)
+    // publish: where this scan's counter is shown to a scan of the later tets, which stops
+    // once the two counters together pass the bound (`earlier`): its result is then not used
+    // (see below), so it need not go on.
+    auto scanTets = [&](TetId tBegin,
+                      TetId tEnd,
+                      LatticeScan& scan,
+                      std::atomic<double>* publish = nullptr,
+                      const std::atomic<double>* earlier = nullptr)
     {
       double& candidates = scan.candidates;
-      for (TetId t = tBegin; t < tEnd && candidates <= maxCandidates; ++t)
+      for (TetId t = tBegin; t < tEnd && candidates <= maxCandidates &&
+           (!earlier || candidates + earlier->load(std::memory_order_relaxed) <= maxCandidates);
+           ++t)
       {
+        if (publish)
+          publish->store(candidates, std::memory_order_relaxed);
         if (mesh.isDeleted(t))
           continue;
         const double* c[4];
@@ -1534,27 +1545,42 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       }
       scan.peak = std::max(scan.peak, candidates);
     };
-    // The two halves of the tets side by side, kept when neither met the work bound where the
-    // scan of all tets would not have (the second half's counter starts at the first's total);
-    // else, and with a background field (a callback that may not be thread-safe), one scan.
+    // The two halves of the tets side by side. The scan of all tets stops where its counter
+    // meets the work bound: inside the first half when the first half's scan met it (then
+    // that scan is the result), else the second half's part is what the second half gives
+    // with the counter starting at the first half's total, rescanned when that bound is met
+    // (or the second half stopped early: its counter and the first's passed the bound, so it
+    // is met). Which is used depends on the counters' final values only, not on timing.
+    // One scan with a background field (a callback that may not be thread-safe).
     LatticeScan all;
     constexpr TetId kMinHalves = 4096;
-    bool scanned = false;
-    if (!background && initialTets >= kMinHalves && wantTwoThreads(0))
+    if (!background && initialTets >= kMinHalves)
     {
       LatticeScan half[2];
       const TetId middle = initialTets / 2;
-      runPair(true, [&](int k) { scanTets(k ? middle : 0, k ? initialTets : middle, half[k]); });
-      if (half[0].peak <= maxCandidates && half[0].candidates + half[1].peak <= maxCandidates)
+      std::atomic<double> firstCount{ 0 };
+      runPair(wantTwoThreads(0),
+        [&](int k)
+        {
+          if (k == 0)
+            scanTets(0, middle, half[0], &firstCount);
+          else
+            scanTets(middle, initialTets, half[1], nullptr, &firstCount);
+        });
+      all = std::move(half[0]);
+      if (all.peak <= maxCandidates)
       {
-        all.points = std::move(half[0].points);
+        if (all.candidates + half[1].peak > maxCandidates)
+        {
+          half[1] = LatticeScan{};
+          half[1].candidates = all.candidates;
+          scanTets(middle, initialTets, half[1]);
+        }
         all.points.insert(all.points.end(), half[1].points.begin(), half[1].points.end());
-        all.keys = std::move(half[0].keys);
         all.keys.insert(all.keys.end(), half[1].keys.begin(), half[1].keys.end());
-        scanned = true;
       }
     }
-    if (!scanned)
+    else
       scanTets(0, initialTets, all);
     for (std::size_t i = 0; i < all.points.size(); ++i)
       if (taken.insert(all.keys[i]))
