@@ -1040,23 +1040,61 @@ void openSlotRanges(TetMesh& mesh, Side* side, std::size_t slots0, std::size_t s
   side[1].pool.end = static_cast<TetId>(total);
 }
 
-// The slots the sides did not use go back: side 1's unused end is cut off, the rest of the
-// ranges and the freed slots go to the free list.
-void closeSlotRanges(TetMesh& mesh, Side* side)
+// Closes the sides' ranges: side 1's tets move down to follow side 0's last one (no gap of
+// unused slots is left in the arrays), side 1's unused end is cut off, and the freed slots go
+// to the free list. Every neighbour reference into the moved block is moved with it.
+TetRelocation closeSlotRanges(TetMesh& mesh, Side* side)
 {
-  mesh.tets.resize(4 * static_cast<std::size_t>(side[1].pool.next));
-  mesh.neighbors.resize(4 * static_cast<std::size_t>(side[1].pool.next));
-  mesh.flags.resize(static_cast<std::size_t>(side[1].pool.next));
-  mesh.freeTets = std::move(side[0].pool.freed);
-  for (TetId t = side[0].pool.next; t < side[0].pool.end; ++t)
+  TetRelocation moved;
+  moved.from = side[0].pool.end;
+  moved.to = side[1].pool.next;
+  moved.shift = side[0].pool.end - side[0].pool.next;
+  const bool sideOneUsed = moved.to > moved.from;
+  // With nothing to move, side 0's unused slots are the arrays' end: cut off too.
+  const TetId end = sideOneUsed ? moved.to - moved.shift : side[0].pool.next;
+  if (moved.shift > 0 && sideOneUsed)
   {
-    mesh.tets[4 * static_cast<std::size_t>(t)] = kDeletedTet;
-    mesh.flags[t] = 0;
-    mesh.freeTets.push_back(t);
+    for (TetId t = moved.from; t < moved.to; ++t)
+    {
+      const std::size_t from = 4 * static_cast<std::size_t>(t);
+      const std::size_t to = 4 * static_cast<std::size_t>(t - moved.shift);
+      for (int k = 0; k < 4; ++k)
+      {
+        mesh.tets[to + k] = mesh.tets[from + k];
+        mesh.neighbors[to + k] = mesh.neighbors[from + k];
+      }
+      mesh.flags[t - moved.shift] = mesh.flags[t];
+    }
+    // References between moved tets move by the shift; a tet outside the block gets its
+    // reference back to the moved tet rewritten (freed slots' entries are stale: skipped).
+    for (TetId t = moved.from - moved.shift; t < end; ++t)
+    {
+      if (mesh.isDeleted(t))
+        continue;
+      for (int f = 0; f < 4; ++f)
+      {
+        FaceRef& n = mesh.neighbors[4 * static_cast<std::size_t>(t) + f];
+        if (n == kNoNeighbor)
+          continue;
+        if (faceTet(n) >= moved.from && faceTet(n) < moved.to)
+          n -= 4 * moved.shift;
+        else
+          mesh.neighbors[static_cast<std::size_t>(n)] = makeFaceRef(t, f);
+      }
+    }
+    for (TetId& t : side[1].pool.freed)
+      t = moved.map(t);
   }
+  else
+    moved = TetRelocation{};
+  mesh.tets.resize(4 * static_cast<std::size_t>(end));
+  mesh.neighbors.resize(4 * static_cast<std::size_t>(end));
+  mesh.flags.resize(static_cast<std::size_t>(end));
+  mesh.freeTets = std::move(side[0].pool.freed);
   mesh.freeTets.insert(mesh.freeTets.end(), side[1].pool.freed.begin(), side[1].pool.freed.end());
   side[0].pool.freed.clear();
   side[1].pool.freed.clear();
+  return moved;
 }
 
 namespace
@@ -1093,6 +1131,7 @@ void insertInHalves(TetMesh& mesh,
   std::nth_element(
     values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
   const double split = values[values.size() / 2];
+  std::vector<double>().swap(values); // 8 bytes a point, not kept during the insertions
   Side* side = halves.side;
   for (int k = 0; k < 2; ++k)
   {
@@ -1141,8 +1180,8 @@ void insertInHalves(TetMesh& mesh,
   };
   runPair(twoThreads, work);
 
-  closeSlotRanges(mesh, side);
-  hint = side[1].hint;
+  const TetRelocation moved = closeSlotRanges(mesh, side);
+  hint = moved.map(side[1].hint);
   for (int k = 0; k < 2; ++k)
     duplicates.insert(duplicates.end(), side[k].duplicates.begin(), side[k].duplicates.end());
   pending.clear();
@@ -1206,12 +1245,12 @@ InsertResult MeshHalves::insert(int side, VertexId v, TetId hint)
   return insertImpl<true, true>(*state_->mesh, v, hint, state_->halves.side[side].ws);
 }
 
-void MeshHalves::finish()
+TetRelocation MeshHalves::finish()
 {
   if (!state_->open)
-    return;
-  closeSlotRanges(*state_->mesh, state_->halves.side);
+    return {};
   state_->open = false;
+  return closeSlotRanges(*state_->mesh, state_->halves.side);
 }
 
 InsertResult insertVertex(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspace& workspace)

@@ -84,6 +84,13 @@ TetId locatePoint(const TetMesh& mesh, const double* p, TetId hint);
 // outside, or a non-convex mesh between hint and p) or when hint is not a live tet.
 TetId walkToPoint(const TetMesh& mesh, const double* p, TetId hint);
 
+// Tet ids moved by MeshHalves::finish: those in [from, to) now are `shift` lower.
+struct TetRelocation
+{
+  TetId from = 0, to = 0, shift = 0;
+  TetId map(TetId t) const { return t >= from && t < to ? t - shift : t; }
+};
+
 // Two threads inserting into one (constrained) mesh, for callers that choose the points as
 // they go (InteriorRefinement's lattice), as buildDelaunay's halves do. Side 0 owns the
 // vertices whose coordinate `axis` is below `split`, side 1 the others, and a tet is a side's
@@ -113,8 +120,10 @@ public:
   // insertVertex for side k: v's coordinates must be in mesh.coords (their size fixed
   // beforehand). Returns Postponed instead of touching the other side's tets.
   InsertResult insert(int side, VertexId v, TetId hint);
-  // Returns the unused slots to the mesh (its free list); the mesh is an ordinary one again.
-  void finish();
+  // Closes the gap the sides' slot ranges left: side 1's tets move down to follow side 0's
+  // (returned: the caller moves its own per-tet data and tet ids the same way); the mesh is an
+  // ordinary one again. The destructor calls it if the caller did not.
+  TetRelocation finish();
 
 private:
   struct State;

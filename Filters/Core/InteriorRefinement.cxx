@@ -1175,8 +1175,19 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   // the sides postponed are added to `rest`, which is sorted. Returns the points inserted.
   auto endHalves = [&](HalvesPhase& phase, std::vector<std::size_t>& rest)
   {
-    phase.halves->finish();
+    // Side 1's tets moved down to close the gap of unused slots: their regions and the tet
+    // ids held here move with them.
+    const TetRelocation moved = phase.halves->finish();
+    for (TetId t = moved.from; t < moved.to; ++t)
+      region[static_cast<std::size_t>(t - moved.shift)] = region[static_cast<std::size_t>(t)];
     region.resize(static_cast<std::size_t>(mesh.tetCapacity()), -1);
+    if (moved.shift > 0)
+    {
+      for (TetId& t : vertexTet)
+        t = moved.map(t);
+      for (HalfState& me : phase.side)
+        me.hint = moved.map(me.hint);
+    }
     const VertexId gap = static_cast<VertexId>(phase.side[0].items.size()) - phase.side[0].accepted;
     const VertexId firstOne = phase.side[1].firstId;
     if (gap > 0 && phase.side[1].accepted > 0)
