@@ -1228,6 +1228,21 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     std::sort(rest.begin(), rest.end());
     return inserted;
   };
+  // Runs body(k, side k's state, item) over each side's items, side by side, until an abort.
+  auto runHalves = [&](HalvesPhase& phase, const auto& body)
+  {
+    runPair(wantTwoThreads(0),
+      [&](int k)
+      {
+        HalfState& me = phase.side[k];
+        for (std::size_t item : me.items)
+        {
+          if (phase.abort.load(std::memory_order_relaxed))
+            break;
+          body(k, me, item);
+        }
+      });
+  };
 
   if (options.latticeSpacing > 0)
   {
@@ -1695,30 +1710,24 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
           return false;
       }
       beginHalves(phase, axis, split);
-      auto work = [&](int k)
-      {
-        HalfState& me = phase.side[k];
-        for (std::size_t item : me.items)
+      runHalves(phase,
+        [&](int k, HalfState& me, std::size_t item)
         {
-          if (phase.abort.load(std::memory_order_relaxed))
-            break;
           const LatticePoint& q = pointAt(item);
           if (refusedOnSide(me, q.p, q.h, options.latticeBoundaryDistance))
-            continue;
+            return;
           const TetId container = phase.halves->locate(k, q.p, me.hint);
           if (container < 0)
           {
             me.postponed.push_back(item);
-            continue;
+            return;
           }
           if (region[container] != initialRegion[q.tet])
-            continue;
+            return;
           if (insertOnSide(phase, k, q.p, q.h, container, initialRegion[q.tet]) ==
             InsertStatus::Postponed)
             me.postponed.push_back(item);
-        }
-      };
-      runPair(wantTwoThreads(0), work);
+        });
       const VertexId inserted = endHalves(phase, rest);
       result.latticePoints += inserted;
       result.latticeHalvesPoints += inserted;
@@ -1823,51 +1832,45 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     if (phase.side[0].items.empty() || phase.side[1].items.empty())
       return false;
     beginHalves(phase, axis, split);
-    auto work = [&](int k)
-    {
-      HalfState& me = phase.side[k];
-      for (std::size_t item : me.items)
+    runHalves(phase,
+      [&](int k, HalfState& me, std::size_t item)
       {
-        if (phase.abort.load(std::memory_order_relaxed))
-          break;
         const Candidate& c = items[item];
         const TetId t = findEdgeOnSide(me, c.a, c.b, c.tet);
         if (t < 0)
-          continue; // the edge is gone: a point inserted this round took its place
+          return; // the edge is gone: a point inserted this round took its place
         const double* p = at[item].data();
         const std::uint64_t key = edgeKey(c.a, c.b);
         const auto shared = outsideSplits.find(key);
         if (shared != outsideSplits.end() && std::equal(p, p + 3, shared->second.begin()))
-          continue;
+          return;
         const auto own = me.outside.find(key);
         if (own != me.outside.end() && std::equal(p, p + 3, own->second.begin()))
-          continue;
+          return;
         const TetId container = phase.halves->locate(k, p, t);
         if (container == -1)
         {
           me.outside[key] = { p[0], p[1], p[2] };
-          continue;
+          return;
         }
         if (container < 0)
         {
           me.postponed.push_back(item);
-          continue;
+          return;
         }
         if (region[container] != region[t])
-          continue;
+          return;
         const double hp = sizeAt(p, container, 0.5 * (h[c.a] + h[c.b]));
         if (!(hp <= hmax))
         {
           me.postponed.push_back(item);
-          continue;
+          return;
         }
         if (refusedOnSide(me, p, hp, options.minBoundaryDistance))
-          continue;
+          return;
         if (insertOnSide(phase, k, p, hp, container, region[t]) == InsertStatus::Postponed)
           me.postponed.push_back(item);
-      }
-    };
-    runPair(wantTwoThreads(0), work);
+      });
     const VertexId inserted = endHalves(phase, rest);
     insertedThisRound += inserted;
     result.splitHalvesPoints += inserted;

@@ -3,6 +3,7 @@
 #include "Delaunay.h"
 #include "HilbertSort.h"
 #include "MeshValidation.h"
+#include "PointSets.h"
 #include "Predicates.h"
 
 #include <gtest/gtest.h>
@@ -14,44 +15,10 @@
 #include <set>
 
 using namespace tetmesher;
+using namespace tetmesher::testing;
 
 namespace
 {
-
-TetMesh randomPoints(int n, unsigned seed, double lo = 0, double hi = 1)
-{
-  TetMesh mesh;
-  std::mt19937_64 gen(seed);
-  std::uniform_real_distribution<double> u(lo, hi);
-  for (int i = 0; i < n; ++i)
-    mesh.addVertex(u(gen), u(gen), u(gen));
-  return mesh;
-}
-
-// n points uniformly spread on the unit sphere (rounded: nearly, not exactly, co-spherical).
-TetMesh pointsOnUnitSphere(int n, unsigned seed)
-{
-  TetMesh mesh;
-  std::mt19937_64 gen(seed);
-  std::normal_distribution<double> g;
-  for (int i = 0; i < n; ++i)
-  {
-    double x = g(gen), y = g(gen), z = g(gen);
-    double r = std::sqrt(x * x + y * y + z * z);
-    mesh.addVertex(x / r, y / r, z / r);
-  }
-  return mesh;
-}
-
-TetMesh gridPoints(int m)
-{
-  TetMesh mesh;
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j)
-      for (int k = 0; k < m; ++k)
-        mesh.addVertex(i, j, k);
-  return mesh;
-}
 
 // farBox: the box tets only leave the convex hull of the input when the box is far enough
 // that no Delaunay ball of a hull face reaches a box corner; hull tests ask for a far box.

@@ -3,6 +3,7 @@
 // insertion sequence gives (the symbolic perturbation makes it unique), exactly valid on
 // degenerate input, and the arrays must not depend on the number of threads.
 #include "Delaunay.h"
+#include "PointSets.h"
 
 #include <gtest/gtest.h>
 
@@ -14,48 +15,13 @@
 #include <set>
 
 using namespace tetmesher;
+using namespace tetmesher::testing;
 
 namespace
 {
 
 // Large enough that the last BRIO round (7/8 of the points) is split in halves.
 constexpr int kPoints = 60000;
-
-TetMesh uniformPoints(int n, unsigned seed)
-{
-  TetMesh mesh;
-  std::mt19937_64 gen(seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  for (int i = 0; i < n; ++i)
-    mesh.addVertex(u(gen), u(gen), u(gen));
-  return mesh;
-}
-
-// Nearly co-spherical: beyond both floating-point filters of the in-sphere test.
-TetMesh spherePoints(int n, unsigned seed)
-{
-  TetMesh mesh;
-  std::mt19937_64 gen(seed);
-  std::normal_distribution<double> g;
-  for (int i = 0; i < n; ++i)
-  {
-    const double x = g(gen), y = g(gen), z = g(gen);
-    const double r = std::sqrt(x * x + y * y + z * z);
-    mesh.addVertex(x / r, y / r, z / r);
-  }
-  return mesh;
-}
-
-// Fully degenerate: every cube of 8 points is co-spherical, many points share the split value.
-TetMesh gridPoints(int m)
-{
-  TetMesh mesh;
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j)
-      for (int k = 0; k < m; ++k)
-        mesh.addVertex(i, j, k);
-  return mesh;
-}
 
 // The live tets as sorted vertex quadruples, sorted: the triangulation without its numbering.
 std::vector<std::array<VertexId, 4>> tetSet(const TetMesh& mesh)
@@ -100,12 +66,12 @@ void expectSameTriangulation(const TetMesh& input)
 
 TEST(DelaunayHalves, UniformPointsGiveTheSameTriangulationAsOneSequence)
 {
-  expectSameTriangulation(uniformPoints(kPoints, 11));
+  expectSameTriangulation(randomPoints(kPoints, 11));
 }
 
 TEST(DelaunayHalves, CosphericalPointsGiveTheSameTriangulationAsOneSequence)
 {
-  expectSameTriangulation(spherePoints(kPoints, 12));
+  expectSameTriangulation(pointsOnUnitSphere(kPoints, 12));
 }
 
 TEST(DelaunayHalves, GridGivesTheSameTriangulationAsOneSequence)
@@ -116,7 +82,7 @@ TEST(DelaunayHalves, GridGivesTheSameTriangulationAsOneSequence)
 TEST(DelaunayHalves, ClusteredPointsGiveTheSameTriangulationAsOneSequence)
 {
   // Dense clusters in a sparse cloud: the halves' split lands inside a cluster.
-  TetMesh mesh = uniformPoints(kPoints / 4, 13);
+  TetMesh mesh = randomPoints(kPoints / 4, 13);
   std::mt19937_64 gen(14);
   std::normal_distribution<double> g;
   for (int c = 0; c < 6; ++c)
@@ -130,7 +96,7 @@ TEST(DelaunayHalves, ClusteredPointsGiveTheSameTriangulationAsOneSequence)
 
 TEST(DelaunayHalves, ThreadCountDoesNotChangeTheArrays)
 {
-  const TetMesh input = uniformPoints(kPoints, 15);
+  const TetMesh input = randomPoints(kPoints, 15);
   TetMesh one = input;
   ASSERT_TRUE(build(one, true, 1).ok);
   // Repeated: a race between the two threads would show as a difference sooner or later.
@@ -146,7 +112,7 @@ TEST(DelaunayHalves, ThreadCountDoesNotChangeTheArrays)
 
 TEST(DelaunayHalves, DuplicatesAreReportedOnceEach)
 {
-  TetMesh mesh = uniformPoints(kPoints, 16);
+  TetMesh mesh = randomPoints(kPoints, 16);
   std::mt19937_64 gen(17);
   const VertexId original = mesh.vertexCount();
   for (int i = 0; i < kPoints / 3; ++i)

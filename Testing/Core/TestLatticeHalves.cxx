@@ -17,20 +17,6 @@ using namespace tetmesher::testing;
 namespace
 {
 
-MesherResult asMesherResult(const VolumeMeshResult& v, std::int32_t inputPoints)
-{
-  MesherResult r;
-  r.ok = v.ok;
-  r.error = v.error;
-  r.points = v.points;
-  r.tets = v.tets;
-  r.regionIds = v.regionIds;
-  r.boundaryFaceTet = v.boundaryFaceTet;
-  r.regionCount = v.regionCount;
-  r.steinerPoints = static_cast<int>(v.points.size() / 3) - inputPoints;
-  return r;
-}
-
 VolumeMeshResult meshWithThreads(const Surface& s, double h, const char* threads)
 {
   setenv("TETMESHER_THREADS", threads, 1);

@@ -17,20 +17,6 @@ using namespace tetmesher::testing;
 namespace
 {
 
-tetmesher::MesherResult asMesherResult(const VolumeMeshResult& v, std::int32_t inputPoints)
-{
-  MesherResult r;
-  r.ok = v.ok;
-  r.error = v.error;
-  r.points = v.points;
-  r.tets = v.tets;
-  r.regionIds = v.regionIds;
-  r.boundaryFaceTet = v.boundaryFaceTet;
-  r.regionCount = v.regionCount;
-  r.steinerPoints = static_cast<int>(v.points.size() / 3) - inputPoints;
-  return r;
-}
-
 double minQuality(const VolumeMeshResult& v, const std::vector<std::int32_t>& tets)
 {
   double q = 1;
