@@ -77,13 +77,16 @@ bool tetHas(const TetMesh& mesh, TetId t, VertexId v)
 }
 
 // The live tets incident to v, by adjacency from t (which contains v). Marks visited tets
-// with scratch bit 2 and clears it again.
-void starOf(TetMesh& mesh, TetId t, VertexId v, std::vector<TetId>& star)
+// with scratch bit 2 and clears it again; without marks (`marked` false: a side of MeshHalves,
+// where the other side may read the flags of shared tets) a list search tells the visited
+// ones instead, in the same order (stars hold tens of tets).
+void starOf(TetMesh& mesh, TetId t, VertexId v, std::vector<TetId>& star, bool marked = true)
 {
   constexpr std::uint8_t kSeen = kScratchBit2;
   star.clear();
   star.push_back(t);
-  mesh.flags[t] |= kSeen;
+  if (marked)
+    mesh.flags[t] |= kSeen;
   for (std::size_t i = 0; i < star.size(); ++i)
   {
     const TetId u = star[i];
@@ -95,15 +98,17 @@ void starOf(TetMesh& mesh, TetId t, VertexId v, std::vector<TetId>& star)
       if (n == kNoNeighbor)
         continue;
       const TetId w = faceTet(n);
-      if (!(mesh.flags[w] & kSeen))
+      if (marked ? !(mesh.flags[w] & kSeen) : std::find(star.begin(), star.end(), w) == star.end())
       {
-        mesh.flags[w] |= kSeen;
+        if (marked)
+          mesh.flags[w] |= kSeen;
         star.push_back(w);
       }
     }
   }
-  for (TetId u : star)
-    mesh.flags[u] = static_cast<std::uint8_t>(mesh.flags[u] & ~kSeen);
+  if (marked)
+    for (TetId u : star)
+      mesh.flags[u] = static_cast<std::uint8_t>(mesh.flags[u] & ~kSeen);
 }
 
 // Vertices bucketed by size class: class L holds sizes in [base 2^L, base 2^(L+1)) (class 0
@@ -951,7 +956,10 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     for (int k = 0; k < 3; ++k)
       p[k] = pa[k] + s * (pb[k] - pa[k]);
   };
-  auto findEdge = [&](VertexId a, VertexId b, TetId hint) -> TetId
+  // A tet of edge ab: the hint, else one of a's star (found in `stars`, unmarked for a side
+  // of MeshHalves).
+  auto findEdgeIn =
+    [&](VertexId a, VertexId b, TetId hint, std::vector<TetId>& stars, bool side) -> TetId
   {
     if (hint >= 0 && hint < mesh.tetCapacity() && !mesh.isDeleted(hint) && tetHas(mesh, hint, a) &&
       tetHas(mesh, hint, b))
@@ -959,12 +967,14 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     const TetId t = vertexTet[a];
     if (t < 0 || mesh.isDeleted(t) || !tetHas(mesh, t, a))
       return -1;
-    starOf(mesh, t, a, star);
-    for (TetId u : star)
+    starOf(mesh, t, a, stars, !side);
+    for (TetId u : stars)
       if (tetHas(mesh, u, b))
         return u;
     return -1;
   };
+  auto findEdge = [&](VertexId a, VertexId b, TetId hint)
+  { return findEdgeIn(a, b, hint, star, false); };
 
   // h at p, a point in `container`: the background field, else the interpolation of the
   // container's vertex sizes (already scaled: clamped only).
@@ -994,20 +1004,31 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   };
   // Inserts p (in `container`, of region r) with size hp unless a vertex or a constrained
   // face is too close or the kernel refuses it. Returns a tet of the new vertex, or -1.
-  // Is p (size hp) too close to a vertex or a constrained face? (Counted.)
-  auto refused = [&](const double* p, double hp, double boundaryDistance)
+  // Is p (size hp) too close to a vertex (of the grid, or of `own` too, a side's: see
+  // HalvesPhase) or a constrained face? Counted in the counters given.
+  auto tooClose = [&](const ProximityGrid* own,
+                    int& nearVertex,
+                    int& nearBoundary,
+                    const double* p,
+                    double hp,
+                    double boundaryDistance)
   {
-    if (checkProximity && grid.hasNear(p, hp, h))
+    if (checkProximity && (grid.hasNear(p, hp, h) || (own && own->hasNear(p, hp, h))))
     {
-      ++result.rejectedNearVertex;
+      ++nearVertex;
       return true;
     }
     if (boundaryDistance > 0 && faces->near(mesh, p, boundaryDistance * hp))
     {
-      ++result.rejectedNearBoundary;
+      ++nearBoundary;
       return true;
     }
     return false;
+  };
+  auto refused = [&](const double* p, double hp, double boundaryDistance)
+  {
+    return tooClose(
+      nullptr, result.rejectedNearVertex, result.rejectedNearBoundary, p, hp, boundaryDistance);
   };
   // Inserts p unless refused; checked = the caller has just asked `refused`.
   auto tryInsert = [&](const double* p,
@@ -1119,19 +1140,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   };
   // refused() for a side.
   auto refusedOnSide = [&](HalfState& me, const double* p, double hp, double boundaryDistance)
-  {
-    if (checkProximity && (grid.hasNear(p, hp, h) || me.grid->hasNear(p, hp, h)))
-    {
-      ++me.nearVertex;
-      return true;
-    }
-    if (boundaryDistance > 0 && faces->near(mesh, p, boundaryDistance * hp))
-    {
-      ++me.nearBoundary;
-      return true;
-    }
-    return false;
-  };
+  { return tooClose(me.grid.get(), me.nearVertex, me.nearBoundary, p, hp, boundaryDistance); };
   // tryInsert() for a side, the proximity already tested.
   auto insertOnSide =
     [&](HalvesPhase& phase, int k, const double* p, double hp, TetId container, std::int32_t r)
@@ -1772,36 +1781,6 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   VertexId gradedCount = 0;
   std::vector<VertexId> seeds, seedStamp;
   bool aborted = false;
-  // findEdge for a side: the star of a without scratch marks (the other side may read the
-  // flags of shared tets), in the same order; a's star is the side's or shared, as a is its.
-  auto findEdgeOnSide = [&](HalfState& me, VertexId a, VertexId b, TetId hint) -> TetId
-  {
-    if (hint >= 0 && hint < mesh.tetCapacity() && !mesh.isDeleted(hint) && tetHas(mesh, hint, a) &&
-      tetHas(mesh, hint, b))
-      return hint;
-    const TetId t = vertexTet[a];
-    if (t < 0 || mesh.isDeleted(t) || !tetHas(mesh, t, a))
-      return -1;
-    me.star.clear();
-    me.star.push_back(t);
-    for (std::size_t i = 0; i < me.star.size(); ++i)
-    {
-      const TetId u = me.star[i];
-      for (int f = 0; f < 4; ++f)
-      {
-        if (mesh.vertex(u, f) == a)
-          continue; // the face opposite a does not contain a
-        const FaceRef n = mesh.neighbor(u, f);
-        if (n != kNoNeighbor &&
-          std::find(me.star.begin(), me.star.end(), faceTet(n)) == me.star.end())
-          me.star.push_back(faceTet(n));
-      }
-    }
-    for (TetId u : me.star)
-      if (tetHas(mesh, u, b))
-        return u;
-    return -1;
-  };
   // One edge-splitting round's candidates in two halves (see HalvesPhase): a side takes the
   // edges with both ends on its side, the split point farther from the split than the margin,
   // and a size at most hmax (the margin's; a larger one is postponed).
@@ -1836,7 +1815,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       [&](int k, HalfState& me, std::size_t item)
       {
         const Candidate& c = items[item];
-        const TetId t = findEdgeOnSide(me, c.a, c.b, c.tet);
+        const TetId t = findEdgeIn(c.a, c.b, c.tet, me.star, true);
         if (t < 0)
           return; // the edge is gone: a point inserted this round took its place
         const double* p = at[item].data();
