@@ -63,9 +63,9 @@ inline unsigned nextRandom(std::uint64_t& state)
 }
 } // namespace
 
-// Partitioned insertion (insertSide): the half of space one side owns, a coordinate below a
-// split value or not. A tet is the side's when its 4 vertices are; only that side creates or
-// deletes such tets, so two sides never touch the same tet (see insertSide).
+// Partitioned insertion (insertImpl<.., true>): the half of space one side owns, a coordinate below
+// a split value or not. A tet is the side's when its 4 vertices are; only that side creates or
+// deletes such tets, so two sides never touch the same tet (see insertImpl).
 struct SpacePartition
 {
   const double* coords;
@@ -76,6 +76,11 @@ struct SpacePartition
   bool owns(VertexId v) const
   {
     return (coords[3 * static_cast<std::size_t>(v) + axis] < split) == lower;
+  }
+  // The tet's 4 vertex ids (without marks) are all the side's.
+  bool ownsTet(const VertexId* tv) const
+  {
+    return owns(tv[0]) && owns(tv[1]) && owns(tv[2]) && owns(tv[3]);
   }
 };
 
@@ -454,9 +459,7 @@ bool growCavityFast(TetMesh& mesh, VertexId v, TetId start, InsertionWorkspace& 
         VertexId* uv = tets + 4 * static_cast<std::size_t>(faceTet(n));
         if (hasMark(uv, 2))
           continue; // internal face
-        if (Partitioned && !hasMark(uv, 3) &&
-          !(ws.partition->owns(uv[0]) && ws.partition->owns(uv[1]) && ws.partition->owns(uv[2]) &&
-            ws.partition->owns(uv[3])))
+        if (Partitioned && !hasMark(uv, 3) && !ws.partition->ownsTet(uv))
         {
           if (predicates::insphereSoSFiltered(
                 coords, uv[0], uv[1], uv[2], uv[3], v, ws.perturbationIds) > 0)
@@ -533,31 +536,22 @@ bool growCavityChecked(TetMesh& mesh,
       {
         const TetId u = faceTet(n);
         constrained = constrained || ((flags[u] >> faceIndex(n)) & 1u);
-        if (Partitioned && !constrained && !(flags[u] & (kInCavity | kRejected)))
+        const VertexId* uv = tets + 4 * static_cast<std::size_t>(u);
+        if (Partitioned && !constrained && !(flags[u] & (kInCavity | kRejected)) &&
+          !ws.partition->ownsTet(uv))
         {
-          const VertexId* uv = tets + 4 * static_cast<std::size_t>(u);
-          if (!(ws.partition->owns(uv[0]) && ws.partition->owns(uv[1]) &&
-                ws.partition->owns(uv[2]) && ws.partition->owns(uv[3])))
+          // The other side may read this tet: no mark. In conflict, the cavity would cross
+          // into it; else its face is a boundary face, below (never kInCavity).
+          if (predicates::insphereSoSFiltered(
+                coords, uv[0], uv[1], uv[2], uv[3], v, ws.perturbationIds) > 0)
           {
-            if (predicates::insphereSoSFiltered(
-                  coords, uv[0], uv[1], uv[2], uv[3], v, ws.perturbationIds) > 0)
-            {
-              clearMarks(mesh, ws);
-              *crossed = true;
-              return false;
-            }
-            const VertexId* tv = tets + 4 * static_cast<std::size_t>(c);
-            ws.boundary.push_back(
-              { { tv[kFaceVertices[f][0]], tv[kFaceVertices[f][1]], tv[kFaceVertices[f][2]] },
-                n,
-                false });
-            allVisible = allVisible && faceOrient(mesh, coords, c, f, p) > 0;
-            continue;
+            clearMarks(mesh, ws);
+            *crossed = true;
+            return false;
           }
         }
-        if (!constrained && !(flags[u] & (kInCavity | kRejected)))
+        else if (!constrained && !(flags[u] & (kInCavity | kRejected)))
         {
-          const VertexId* uv = tets + 4 * static_cast<std::size_t>(u);
           if (predicates::insphereSoSFiltered(
                 coords, uv[0], uv[1], uv[2], uv[3], v, ws.perturbationIds) > 0)
           {
@@ -837,8 +831,13 @@ TetId fillCavity(TetMesh& mesh, VertexId v, InsertionWorkspace& ws)
   return lastTet;
 }
 
-// Partitioned (checked mode, insertVertexInHalf): the walk and the cavity stay within the
-// side's tets (see insertSide), else the answer is Postponed and the mesh unchanged.
+// Partitioned (insertInHalves, MeshHalves): the walk and the cavity stay within the side's
+// tets, else the answer is Postponed and the mesh unchanged. The side's tets (all 4 vertices
+// its own) are created and deleted only by this side; tets with vertices of both sides are
+// neither created nor deleted by anyone during the phase. So the walk may cross any face with
+// a vertex of its own (the entries of such faces are written only by this side, if at all),
+// and the cavity may hold only the side's tets. Nothing this side reads is written by the
+// other, which makes each side's work, and the mesh, independent of the thread schedule.
 template<bool Checked, bool Partitioned = false>
 InsertResult insertImpl(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspace& ws)
 {
@@ -871,9 +870,8 @@ InsertResult insertImpl(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspac
       return { InsertStatus::Duplicate, t, w };
   }
   if constexpr (Partitioned)
-    for (int k = 0; k < 4; ++k)
-      if (!ws.partition->owns(mesh.vertex(t, k)))
-        return { InsertStatus::Postponed, t, -1 };
+    if (!ws.partition->ownsTet(&mesh.tets[4 * static_cast<std::size_t>(t)]))
+      return { InsertStatus::Postponed, t, -1 };
   if (Checked)
   {
     const double* coords = mesh.coords.data();
@@ -890,8 +888,8 @@ InsertResult insertImpl(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspac
       return { InsertStatus::Postponed, t, -1 };
     starShaped = starShaped && noVertexSwallowed(mesh, ws);
   }
-  else
-    growCavityFast(mesh, v, t, ws);
+  else if (!growCavityFast<Partitioned>(mesh, v, t, ws))
+    return { InsertStatus::Postponed, t, -1 };
   if (Checked && !starShaped)
   {
     if (shrinkToStar(mesh, p, t, ws) == ShrinkOutcome::OnConstraint)
@@ -904,66 +902,20 @@ InsertResult insertImpl(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspac
   if (Checked)
     for (TetId r : ws.rejected)
       mesh.flags[r] = static_cast<std::uint8_t>(mesh.flags[r] & ~(kInCavity | kRejected));
+  // The cone needs boundary.size() slots; the cavity gives back cavity.size().
   if constexpr (Partitioned)
     if (ws.boundary.size() > ws.cavity.size() &&
       ws.pool->available() < ws.boundary.size() - ws.cavity.size())
     {
-      for (TetId c : ws.cavity)
-        mesh.flags[c] = static_cast<std::uint8_t>(mesh.flags[c] & ~(kInCavity | kRejected));
+      if (Checked)
+        for (TetId c : ws.cavity)
+          mesh.flags[c] = static_cast<std::uint8_t>(mesh.flags[c] & ~(kInCavity | kRejected));
+      else
+        unmarkCavity(mesh.tets.data(), ws);
       return { InsertStatus::Postponed, t, -1 };
     }
   const TetId created = fillCavity<Checked, Partitioned>(mesh, v, ws);
   return { InsertStatus::Inserted, created, -1 };
-}
-
-// One point of a partitioned phase (insertInHalves). The side's tets (all 4 vertices its own)
-// are created and deleted only by this side; tets with vertices of both sides are neither
-// created nor deleted by anyone during the phase. So the walk may cross any face with a
-// vertex of its own (the entries of such faces are written only by this side, if at all),
-// and the cavity may hold only the side's tets. Nothing this side reads is written by the
-// other, which makes each side's work, and the mesh, independent of the thread schedule.
-enum class SideOutcome
-{
-  Inserted,
-  Duplicate,
-  Postponed
-};
-
-SideOutcome insertSide(TetMesh& mesh,
-  VertexId v,
-  TetId& hint,
-  InsertionWorkspace& ws,
-  VertexId& existing)
-{
-  const double* p = mesh.point(v);
-  const TetId t = walk<true>(mesh, p, hint, ws.rng, ws.partition);
-  if (t < 0)
-    return SideOutcome::Postponed;
-  const VertexId* tv = &mesh.tets[4 * static_cast<std::size_t>(t)];
-  for (int k = 0; k < 4; ++k)
-  {
-    const double* q = mesh.point(tv[k]);
-    if (q[0] == p[0] && q[1] == p[1] && q[2] == p[2])
-    {
-      hint = t;
-      existing = tv[k];
-      return SideOutcome::Duplicate;
-    }
-  }
-  for (int k = 0; k < 4; ++k)
-    if (!ws.partition->owns(tv[k]))
-      return SideOutcome::Postponed;
-  if (!growCavityFast<true>(mesh, v, t, ws))
-    return SideOutcome::Postponed;
-  // The cone needs boundary.size() slots; the cavity gives back cavity.size().
-  if (ws.boundary.size() > ws.cavity.size() &&
-    ws.pool->available() < ws.boundary.size() - ws.cavity.size())
-  {
-    unmarkCavity(mesh.tets.data(), ws);
-    return SideOutcome::Postponed;
-  }
-  hint = fillCavity<false, true>(mesh, v, ws);
-  return SideOutcome::Inserted;
 }
 
 // Glues the faces of a handful of tets by brute-force matching of their vertex triples.
@@ -1164,17 +1116,14 @@ void insertInHalves(TetMesh& mesh,
     me.ws.perturbationIds = mainWs.perturbationIds;
     for (VertexId v : me.points)
     {
-      VertexId existing = -1;
-      switch (insertSide(mesh, v, me.hint, me.ws, existing))
+      const InsertResult r = insertImpl<false, true>(mesh, v, me.hint, me.ws);
+      if (r.status == InsertStatus::Postponed)
+        me.postponed.push_back(v);
+      else
       {
-        case SideOutcome::Inserted:
-          break;
-        case SideOutcome::Duplicate:
-          me.duplicates.emplace_back(v, existing);
-          break;
-        case SideOutcome::Postponed:
-          me.postponed.push_back(v);
-          break;
+        me.hint = r.tet;
+        if (r.status == InsertStatus::Duplicate)
+          me.duplicates.emplace_back(v, r.existing);
       }
     }
   };
