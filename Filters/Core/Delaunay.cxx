@@ -34,6 +34,7 @@
 #include "FilteredPredicates.h"
 #include "HilbertSort.h"
 #include "HugePages.h"
+#include "MedianSplit.h"
 #include "MeshValidation.h"
 #include "ParallelPair.h"
 #include "Predicates.h"
@@ -1064,26 +1065,13 @@ void insertInHalves(TetMesh& mesh,
   bool twoThreads)
 {
   const double* coords = mesh.coords.data();
-  double lo[3], hi[3];
-  for (int k = 0; k < 3; ++k)
-    lo[k] = hi[k] = coords[3 * static_cast<std::size_t>(pending[0]) + k];
-  for (VertexId v : pending)
-    for (int k = 0; k < 3; ++k)
-    {
-      lo[k] = std::min(lo[k], coords[3 * static_cast<std::size_t>(v) + k]);
-      hi[k] = std::max(hi[k], coords[3 * static_cast<std::size_t>(v) + k]);
-    }
   int axis = 0;
-  for (int k = 1; k < 3; ++k)
-    if (hi[k] - lo[k] > hi[axis] - lo[axis])
-      axis = k;
-  std::vector<double> values(pending.size());
-  for (std::size_t i = 0; i < pending.size(); ++i)
-    values[i] = coords[3 * static_cast<std::size_t>(pending[i]) + axis];
-  std::nth_element(
-    values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
-  const double split = values[values.size() / 2];
-  std::vector<double>().swap(values); // 8 bytes a point, not kept during the insertions
+  double split = 0;
+  medianSplit(
+    pending.size(),
+    [&](std::size_t i) { return coords + 3 * static_cast<std::size_t>(pending[i]); },
+    axis,
+    split);
   Side* side = halves.side;
   for (int k = 0; k < 2; ++k)
   {

@@ -6,6 +6,7 @@
 #include "EpochHashTable.h"
 #include "HilbertSort.h"
 #include "HugePages.h"
+#include "MedianSplit.h"
 #include "MemoryBudget.h"
 #include "ParallelPair.h"
 #include "RadixSort.h"
@@ -1031,6 +1032,26 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       nullptr, result.rejectedNearVertex, result.rejectedNearBoundary, p, hp, boundaryDistance);
   };
   // Inserts p unless refused; checked = the caller has just asked `refused`.
+  // After v (at p, size hp, in a tet of region r) went in through `tet`: its star's regions,
+  // its vertices' tets, and v in the proximity grid `into`.
+  auto noteNewVertex = [&](VertexId v,
+                         TetId tet,
+                         const double* p,
+                         double hp,
+                         std::int32_t r,
+                         std::vector<TetId>& stars,
+                         ProximityGrid& into)
+  {
+    starOf(mesh, tet, v, stars);
+    for (TetId u : stars)
+    {
+      region[u] = r;
+      for (int i = 0; i < 4; ++i)
+        vertexTet[mesh.vertex(u, i)] = u;
+    }
+    if (checkProximity)
+      into.insert(v, p, hp);
+  };
   auto tryInsert = [&](const double* p,
                      TetId container,
                      double hp,
@@ -1051,15 +1072,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     h.push_back(hp);
     region.resize(static_cast<std::size_t>(mesh.tetCapacity()), -1);
     vertexTet.resize(static_cast<std::size_t>(mesh.vertexCount()), -1);
-    starOf(mesh, inserted.tet, v, star);
-    for (TetId u : star)
-    {
-      region[u] = r;
-      for (int i = 0; i < 4; ++i)
-        vertexTet[mesh.vertex(u, i)] = u;
-    }
-    if (checkProximity)
-      grid.insert(v, p, hp);
+    noteNewVertex(v, inserted.tet, p, hp, r, star, grid);
     return inserted.tet;
   };
 
@@ -1093,32 +1106,6 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     VertexId base = 0;
     std::unique_ptr<MeshHalves> halves;
     std::atomic<bool> abort{ false };
-  };
-  // The axis of the longest extent of `count` points and their median along it.
-  auto medianSplit = [](std::size_t count, const auto& pointOf, int& axis, double& split)
-  {
-    double lo3[3], hi3[3];
-    for (int k = 0; k < 3; ++k)
-    {
-      lo3[k] = std::numeric_limits<double>::max();
-      hi3[k] = std::numeric_limits<double>::lowest();
-    }
-    for (std::size_t i = 0; i < count; ++i)
-      for (int k = 0; k < 3; ++k)
-      {
-        lo3[k] = std::min(lo3[k], pointOf(i)[k]);
-        hi3[k] = std::max(hi3[k], pointOf(i)[k]);
-      }
-    axis = 0;
-    for (int k = 1; k < 3; ++k)
-      if (hi3[k] - lo3[k] > hi3[axis] - lo3[axis])
-        axis = k;
-    std::vector<double> values(count);
-    for (std::size_t i = 0; i < count; ++i)
-      values[i] = pointOf(i)[axis];
-    std::nth_element(
-      values.begin(), values.begin() + static_cast<std::ptrdiff_t>(count / 2), values.end());
-    split = values[count / 2];
   };
   // Sizes the arrays for the sides' vertices (each side's item count) and opens the halves.
   auto beginHalves = [&](HalvesPhase& phase, int axis, double split)
@@ -1159,15 +1146,8 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       return inserted.status;
     }
     ++me.accepted;
-    starOf(mesh, inserted.tet, v, me.star); // the star of a new vertex is the side's own
-    for (TetId u : me.star)
-    {
-      region[u] = r;
-      for (int i = 0; i < 4; ++i)
-        vertexTet[mesh.vertex(u, i)] = u;
-    }
-    if (checkProximity)
-      me.grid->insert(v, p, hp);
+    // The star of a new vertex is the side's own: marks and writes stay on its tets.
+    noteNewVertex(v, inserted.tet, p, hp, r, me.star, checkProximity ? *me.grid : grid);
     me.hint = inserted.tet;
     // Progress from the caller's thread only (a GUI's callback), counting both sides.
     if (k == 0 && (me.accepted & 1023) == 0 && progress)
