@@ -61,18 +61,18 @@ vtk() {
     --cli-only $b/bin/tetmesher Testing/Data/defects
 }
 
-# The kernel and the lattice prefill insert large rounds on two threads that must never touch
-# the same tets: any data race fails the test that hit it.
+# The kernel and the refinement insert large rounds, and the optimiser works large passes, on two
+# threads that must never touch the same tets: any data race fails the test that hit it.
 threads() {
   local b=build-tsan
   phase "configure core (TSan)" cmake -S . -B $b -DTETMESHER_CORE_ONLY=ON \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS=-fsanitize=thread \
     -DCMAKE_EXE_LINKER_FLAGS=-fsanitize=thread >/dev/null
   phase "build kernel tests (TSan)" cmake --build $b -j"$jobs" --target CoreTestDelaunayHalves \
-    CoreTestLatticeHalves \
+    CoreTestLatticeHalves CoreTestOptimizerHalves \
     CoreTestDelaunay
-  phase "kernel tests (TSan)" ctest --test-dir $b \
-    --output-on-failure -j1 -R 'Core\.Test(Delaunay|LatticeHalves)' ${CTEST_ARGS:-}
+  phase "two-thread tests (TSan)" ctest --test-dir $b \
+    --output-on-failure -j1 -R 'Core\.Test(Delaunay|LatticeHalves|OptimizerHalves)' ${CTEST_ARGS:-}
 }
 
 case $what in

@@ -24,6 +24,9 @@ bool findEdgeRemoval(const Context& ctx, TetId t, VertexId p, VertexId q, LocalM
   thread_local std::uint32_t stamp = 0;
   if (!edgeShell(ctx.mesh, t, p, q, shell, ring))
     return false;
+  for (VertexId r : ring)
+    if (!ctx.claim(r))
+      return false; // a half's move: the shell's tets must be its own
   const int n = static_cast<int>(ring.size());
   if (n < 3 || n > ctx.options.maxEdgeRing || static_cast<int>(shell.size()) != n)
     return false;

@@ -56,8 +56,12 @@ void vertexStar(const TetMesh& mesh, VertexTetIndex& index, VertexId v, std::vec
     int iv = localIndex(mesh, t, v);
     for (int f = 0; f < 4; ++f)
     {
+      // Only faces with v are read: the optimiser's halves of space (QualityOptimization.cxx)
+      // may meanwhile re-glue the face opposite v when v is on the other side.
+      if (f == iv)
+        continue;
       FaceRef n = mesh.neighbor(t, f);
-      if (f == iv || n == kNoNeighbor)
+      if (n == kNoNeighbor)
         continue;
       TetId u = faceTet(n);
       if (index.visit(u))
@@ -89,8 +93,10 @@ TetId firstInStar(const TetMesh& mesh, VertexTetIndex& index, VertexId a, Match 
     int ia = localIndex(mesh, t, a);
     for (int f = 0; f < 4; ++f)
     {
+      if (f == ia)
+        continue;
       FaceRef n = mesh.neighbor(t, f);
-      if (f == ia || n == kNoNeighbor)
+      if (n == kNoNeighbor)
         continue;
       TetId u = faceTet(n);
       if (index.visit(u))
@@ -193,7 +199,8 @@ void replaceTets(TetMesh& mesh,
   VertexTetIndex& index,
   const std::vector<TetId>& oldTets,
   const std::vector<TetVertices>& newTets,
-  std::vector<TetId>* created)
+  std::vector<TetId>* created,
+  TetSlotPool* pool)
 {
   if (created)
     created->clear();
@@ -270,12 +277,16 @@ void replaceTets(TetMesh& mesh,
     }
   }
   for (TetId t : oldTets)
-    mesh.deleteTet(t);
+    if (pool)
+      mesh.deleteTet(*pool, t);
+    else
+      mesh.deleteTet(t);
 
   std::size_t openCount = 0;
   for (const TetVertices& v : newTets)
   {
-    TetId t = mesh.addTet(v[0], v[1], v[2], v[3]);
+    TetId t =
+      pool ? mesh.addTet(*pool, v[0], v[1], v[2], v[3]) : mesh.addTet(v[0], v[1], v[2], v[3]);
     index.note(t, mesh);
     if (created)
       created->push_back(t);

@@ -49,6 +49,18 @@ public:
     return true;
   }
 
+  // The entries of `other` (not its visit marks): a second index over the same mesh, for a
+  // thread of its own.
+  void copyEntries(const VertexTetIndex& other) { vertexTet_ = other.vertexTet_; }
+  // Takes other's entry for every vertex v < vertexCount with takes(v).
+  template<typename Takes>
+  void takeEntries(const VertexTetIndex& other, const Takes& takes)
+  {
+    for (std::size_t v = 0; v < vertexTet_.size() && v < other.vertexTet_.size(); ++v)
+      if (takes(static_cast<VertexId>(v)))
+        vertexTet_[v] = other.vertexTet_[v];
+  }
+
 private:
   void resetStamps();
   std::vector<TetId> vertexTet_;
@@ -86,11 +98,14 @@ bool edgeShell(const TetMesh& mesh,
 // Replaces the live tets `oldTets` by `newTets` (positively oriented, covering exactly the
 // same region). Faces shared with the rest of the mesh are glued back with their constraint
 // flags; faces between two new tets are glued to each other. The new tets' ids go to
-// `created` when given (to undo: replace them by the old vertex quadruples).
+// `created` when given (to undo: replace them by the old vertex quadruples). With `pool`,
+// the old slots go to it and the new tets come from it (it must have newTets.size() -
+// oldTets.size() slots available); else the mesh's free list and its end are used.
 void replaceTets(TetMesh& mesh,
   VertexTetIndex& index,
   const std::vector<TetId>& oldTets,
   const std::vector<TetVertices>& newTets,
-  std::vector<TetId>* created = nullptr);
+  std::vector<TetId>* created = nullptr,
+  TetSlotPool* pool = nullptr);
 
 } // namespace tetmesher

@@ -26,6 +26,8 @@ bool findMultiFaceRemoval(const Context& ctx, TetId t, int f, LocalMove& out)
     return false;
   const VertexId a = ctx.mesh.vertex(t, f);
   const VertexId b = ctx.mesh.vertex(faceTet(n0), faceIndex(n0));
+  if (!ctx.claim(b))
+    return false; // a half's move: every tet it takes must be its own
   const int* fv = kFaceVertices[f];
   // Scratch reused between calls (this runs for every face of every bad tet).
   thread_local std::vector<Sandwiched> faces;
@@ -143,7 +145,7 @@ bool findMultiFaceRemoval(const Context& ctx, TetId t, int f, LocalMove& out)
       break;
     TetId ta = faceTet(na), tb = faceTet(nb);
     VertexId z = ctx.mesh.vertex(ta, faceIndex(na));
-    if (ctx.mesh.vertex(tb, faceIndex(nb)) != z)
+    if (ctx.mesh.vertex(tb, faceIndex(nb)) != z || !ctx.claim(z))
       break;
     int ia = localIndex(ctx.mesh, ta, a);
     FaceRef mid = ctx.mesh.neighbor(ta, ia);

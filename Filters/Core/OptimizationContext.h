@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -226,6 +227,7 @@ public:
     : rm(regionMesh)
     , mesh(regionMesh.mesh)
     , options(opts)
+    , index(ownIndex_)
   {
     // A target in the public unit of the dihedral measure (angle / 70.53 degrees), as a score.
     if (options.measure == QualityMeasure::MinDihedral)
@@ -236,8 +238,54 @@ public:
       size = &sizeCopy;
     }
   }
+  // A view of `main` for one half of space, worked on by a thread of its own while another
+  // works on the other half (QualityOptimization.cxx): the same mesh, sizes, options, floors
+  // and quality cache; `sideIndex` as its vertex index; and its moves restricted to the
+  // tets whose four vertices are on `side` of `vertexSide` (see owns).
+  Context(Context& main,
+    VertexTetIndex& sideIndex,
+    const std::vector<std::int8_t>& vertexSide,
+    std::int8_t side)
+    : rm(main.rm)
+    , mesh(main.mesh)
+    , options(main.options)
+    , size(main.size)
+    , index(sideIndex)
+    , fixed(main.fixed)
+    , floorQ(main.floorQ)
+    , floorDihCosine(main.floorDihCosine)
+    , vertexSide_(&vertexSide)
+    , side_(side)
+    , cache_(main.cache_)
+  {
+  }
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
+
+  // Ownership in a half of space. Such a view changes only tets whose four vertices are its
+  // side's (its own), reads tets that have one of its vertices (they are its own, or have
+  // vertices on both sides, and then no side changes them), and never reads the other
+  // side's: the operations check owns() before they step across a face that is not wholly
+  // their side's, and set `restricted` when a move would need another side's vertex, so that
+  // the tet is worked on again after the halves, by one thread. Always true outside halves.
+  bool halves() const { return vertexSide_ != nullptr; }
+  bool owns(VertexId v) const
+  {
+    return !vertexSide_ || (*vertexSide_)[static_cast<std::size_t>(v)] == side_;
+  }
+  bool ownsTet(TetId t) const
+  {
+    return owns(mesh.vertex(t, 0)) && owns(mesh.vertex(t, 1)) && owns(mesh.vertex(t, 2)) &&
+      owns(mesh.vertex(t, 3));
+  }
+  // owns(v), else marks this context restricted.
+  bool claim(VertexId v) const
+  {
+    if (owns(v))
+      return true;
+    restricted = true;
+    return false;
+  }
 
   const double* P(VertexId v) const { return mesh.point(v); }
 
@@ -309,42 +357,45 @@ public:
   TetEval quality(TetId t) const
   {
     const std::size_t i = static_cast<std::size_t>(t);
-    if (i >= cacheValid_.size())
+    if (i >= cache_->valid.size())
+      growCache();
+    if (!cache_->valid[i])
     {
-      cacheValid_.resize(static_cast<std::size_t>(mesh.tetCapacity()), 0);
-      cache_.resize(static_cast<std::size_t>(mesh.tetCapacity()));
+      cache_->values[i] = evalTet(t);
+      cache_->valid[i] = 1;
     }
-    if (!cacheValid_[i])
-    {
-      cache_[i] = evalTet(t);
-      cacheValid_[i] = 1;
-    }
-    return cache_[i];
+    return cache_->values[i];
   }
-  void invalidateAll() const { std::fill(cacheValid_.begin(), cacheValid_.end(), 0); }
+  void invalidateAll() const { std::fill(cache_->valid.begin(), cache_->valid.end(), 0); }
   // Caches e as tet t's measure; e must be what evalTet(t) gives now (e.g. from a trial).
   void store(TetId t, const TetEval& e) const
   {
     const std::size_t i = static_cast<std::size_t>(t);
-    if (i >= cacheValid_.size())
-    {
-      cacheValid_.resize(static_cast<std::size_t>(mesh.tetCapacity()), 0);
-      cache_.resize(static_cast<std::size_t>(mesh.tetCapacity()));
-    }
-    cache_[i] = e;
-    cacheValid_[i] = 1;
+    if (i >= cache_->valid.size())
+      growCache();
+    cache_->values[i] = e;
+    cache_->valid[i] = 1;
+  }
+  // Sizes the cache to the mesh's tet slots (before halves work on it: they must not grow
+  // it) and measures every live tet not measured yet.
+  void measureAll() const
+  {
+    growCache();
+    for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+      if (!mesh.isDeleted(t))
+        quality(t);
   }
   // Takes over the cache of `other`, a Context on the same mesh and sizes that may drive by
   // another measure (the next stage of optimizeMesh): Q and the angle do not depend on the
   // measure, so only the scores are redone, and the mesh is not measured again.
   void adoptCache(Context& other)
   {
-    cache_.swap(other.cache_);
-    cacheValid_.swap(other.cacheValid_);
+    cache_->values.swap(other.cache_->values);
+    cache_->valid.swap(other.cache_->valid);
     other.invalidateAll();
-    for (std::size_t i = 0; i < cache_.size(); ++i)
-      if (cacheValid_[i])
-        cache_[i].score = scoreOf(cache_[i]);
+    for (std::size_t i = 0; i < cache_->values.size(); ++i)
+      if (cache_->valid[i])
+        cache_->values[i].score = scoreOf(cache_->values[i]);
   }
   double scoreOf(const TetEval& e) const
   {
@@ -352,8 +403,8 @@ public:
   }
   void invalidate(TetId t) const
   {
-    if (static_cast<std::size_t>(t) < cacheValid_.size())
-      cacheValid_[static_cast<std::size_t>(t)] = 0;
+    if (static_cast<std::size_t>(t) < cache_->valid.size())
+      cache_->valid[static_cast<std::size_t>(t)] = 0;
   }
   // The acceptance rule: the driving measure of the changed set strictly improves, and
   // neither guarded measure drops below both its old value on the set and the mesh's
@@ -392,11 +443,29 @@ public:
   OptimizationOptions options;
   const std::vector<double>* size = nullptr; // &sizeCopy when a size field is given
   std::vector<double> sizeCopy;              // grows with inserted vertices
-  VertexTetIndex index;
+private:
+  VertexTetIndex ownIndex_;
+
+public:
+  VertexTetIndex& index;   // ownIndex_, or a half's (the side view constructor)
   std::vector<char> fixed; // per vertex: on a constrained face, or in no tet; never moves
   double floorQ = 0, floorDihCosine = -2;
+  // Set by an operation of a half that needed another side's vertex (see owns); the caller
+  // clears it.
+  mutable bool restricted = false;
 
 private:
+  struct QualityCache
+  {
+    std::vector<TetEval> values;
+    std::vector<char> valid;
+  };
+  void growCache() const
+  {
+    cache_->valid.resize(static_cast<std::size_t>(mesh.tetCapacity()), 0);
+    cache_->values.resize(static_cast<std::size_t>(mesh.tetCapacity()));
+  }
+
   // The sizes at a, b, c, d in the measure's order (eval) into hh; null without a size field.
   const double* sizesOf(VertexId a, VertexId b, VertexId c, VertexId d, double* hh) const
   {
@@ -410,8 +479,10 @@ private:
     return hh;
   }
 
-  mutable std::vector<TetEval> cache_;
-  mutable std::vector<char> cacheValid_;
+  const std::vector<std::int8_t>* vertexSide_ = nullptr; // a half's view: each vertex's side
+  std::int8_t side_ = 0;
+  mutable QualityCache ownCache_;
+  QualityCache* cache_ = &ownCache_; // a half's view: its main context's
 };
 
 } // namespace optimization

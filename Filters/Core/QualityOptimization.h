@@ -95,6 +95,10 @@ struct OptimizationOptions
   // to it. Counters add up over both stages. On by default; 25 (worked to 30) rather than 20
   // for the same reason.
   double dihedralTarget = 25;
+  // A pass with at least this many tets below the target works in two halves of space side
+  // by side, on two threads where the machine has two CPUs (the mesh is the same on one),
+  // then works what needs both halves in one sequence; fewer, and 0, in one sequence.
+  int halvesMinBadTets = 2048;
 };
 
 struct OptimizationResult
@@ -112,6 +116,7 @@ struct OptimizationResult
   int multiFaceRemovals = 0; // more than one face (one face: flips23)
   int insertedVertices = 0;  // by vertex insertion (options.insertion)
   int passesRun = 0;
+  int passesInHalves = 0; // of passesRun (OptimizationOptions::halvesMinBadTets)
   double seconds = 0;
 };
 

@@ -12,6 +12,7 @@
 //  - kNoNeighbor marks a face on the hull of the triangulation.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <new>
@@ -88,6 +89,16 @@ struct UninitializedAllocator : std::allocator<T>
 template<typename T>
 using FlatArray = std::vector<T, UninitializedAllocator<T>>;
 
+// Tet slots set aside for one of two threads that edit one mesh side by side (the
+// optimiser's halves of space): the slots it freed, then a range of fresh ones. A thread only
+// ever writes slots of its own pool, so neither needs a lock.
+struct TetSlotPool
+{
+  std::vector<TetId> freeTets;
+  TetId next = 0, end = 0; // fresh slots [next, end)
+  std::size_t available() const { return freeTets.size() + static_cast<std::size_t>(end - next); }
+};
+
 struct TetMesh
 {
   std::vector<double> coords;    // 3 doubles per vertex
@@ -143,14 +154,21 @@ struct TetMesh
       flags.push_back(0);
       return t;
     }
-    std::size_t base = 4 * static_cast<std::size_t>(t);
-    tets[base] = a;
-    tets[base + 1] = b;
-    tets[base + 2] = c;
-    tets[base + 3] = d;
-    for (int f = 0; f < 4; ++f)
-      neighbors[base + f] = kNoNeighbor;
-    flags[t] = 0;
+    setTet(t, a, b, c, d);
+    return t;
+  }
+  // addTet in a slot of `pool` (which must have one available).
+  TetId addTet(TetSlotPool& pool, VertexId a, VertexId b, VertexId c, VertexId d)
+  {
+    TetId t;
+    if (!pool.freeTets.empty())
+    {
+      t = pool.freeTets.back();
+      pool.freeTets.pop_back();
+    }
+    else
+      t = pool.next++;
+    setTet(t, a, b, c, d);
     return t;
   }
 
@@ -160,12 +178,30 @@ struct TetMesh
     tets[4 * static_cast<std::size_t>(t)] = kDeletedTet;
     freeTets.push_back(t);
   }
+  void deleteTet(TetSlotPool& pool, TetId t)
+  {
+    tets[4 * static_cast<std::size_t>(t)] = kDeletedTet;
+    pool.freeTets.push_back(t);
+  }
 
   // Glues face f of t to face g of u (both directions). u may be kNoNeighbor-encoded.
   void glue(TetId t, int f, TetId u, int g)
   {
     neighbors[4 * static_cast<std::size_t>(t) + f] = makeFaceRef(u, g);
     neighbors[4 * static_cast<std::size_t>(u) + g] = makeFaceRef(t, f);
+  }
+
+  // Slot t (in range) becomes tet (a,b,c,d) with no neighbours and no flags.
+  void setTet(TetId t, VertexId a, VertexId b, VertexId c, VertexId d)
+  {
+    std::size_t base = 4 * static_cast<std::size_t>(t);
+    tets[base] = a;
+    tets[base + 1] = b;
+    tets[base + 2] = c;
+    tets[base + 3] = d;
+    for (int f = 0; f < 4; ++f)
+      neighbors[base + f] = kNoNeighbor;
+    flags[t] = 0;
   }
 
   void setHull(TetId t, int f) { neighbors[4 * static_cast<std::size_t>(t) + f] = kNoNeighbor; }

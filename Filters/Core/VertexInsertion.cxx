@@ -257,6 +257,11 @@ void polishPosition(Context& ctx,
 
 bool findVertexInsertion(Context& ctx, TetId t, LocalMove& out, int maxCavity)
 {
+  if (ctx.halves())
+  {
+    ctx.restricted = true; // a new vertex grows the shared arrays: after the halves
+    return false;
+  }
   TetMesh& m = ctx.mesh;
   // Candidate positions: the centroid, and over each face the apex of the regular tet on
   // that face (inside, toward the opposite vertex).

@@ -109,6 +109,13 @@ bool smoothVertex(Context& ctx, VertexId v, std::vector<TetId>& star)
   vertexStar(ctx.mesh, ctx.index, v, star);
   if (star.empty())
     return false;
+  // In a half, v's whole ball must be its side's: moving v changes every tet of it.
+  for (TetId t : star)
+    if (!ctx.ownsTet(t))
+    {
+      ctx.restricted = true;
+      return false;
+    }
   thread_local SmoothingScratch sc;
   double* x = &ctx.mesh.coords[3 * static_cast<std::size_t>(v)];
   const std::array<double, 3> orig = { x[0], x[1], x[2] };

@@ -25,7 +25,11 @@ struct Surface
   std::int32_t triangleCount() const { return static_cast<std::int32_t>(triangles.size() / 3); }
   std::int32_t addPoint(double x, double y, double z)
   {
-    points.insert(points.end(), { x, y, z });
+    // push_back, not insert of a list: GCC 12 warns (-Wstringop-overflow, a false positive)
+    // about the inlined insert into an empty vector.
+    points.push_back(x);
+    points.push_back(y);
+    points.push_back(z);
     return pointCount() - 1;
   }
   void addTriangle(std::int32_t a, std::int32_t b, std::int32_t c)
