@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <numeric>
 #include <unordered_map>
 
 namespace tetmesher
@@ -1661,21 +1662,23 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
         stop = aborted = true;
     };
 
-    // Large rounds go in two halves of space side by side (HalvesPhase above).
-    auto insertInHalves = [&](std::size_t begin, std::size_t end, std::vector<std::size_t>& rest)
+    // Large rounds go in two halves of space side by side (HalvesPhase above): `items`
+    // (positions in insertionOrder, increasing), and what they leave goes to `rest`. False,
+    // with `rest` to be ignored, when one side would have none.
+    auto insertInHalves = [&](const std::vector<std::size_t>& items, std::vector<std::size_t>& rest)
     {
       auto pointAt = [&](std::size_t i) -> const LatticePoint&
       { return points[static_cast<std::size_t>(insertionOrder[i])]; };
       int axis = 0;
       double split = 0;
       medianSplit(
-        end - begin, [&](std::size_t i) { return pointAt(begin + i).p; }, axis, split);
+        items.size(), [&](std::size_t i) { return pointAt(items[i]).p; }, axis, split);
       double hmax = 0;
-      for (std::size_t i = begin; i < end; ++i)
+      for (std::size_t i : items)
         hmax = std::max(hmax, pointAt(i).h);
       const double margin = checkProximity ? proximityRatio * hmax * (1 + 1e-6) : 0.0;
       HalvesPhase phase;
-      for (std::size_t i = begin; i < end; ++i)
+      for (std::size_t i : items)
       {
         const double c = pointAt(i).p[axis];
         if (!(std::fabs(c - split) > margin))
@@ -1726,23 +1729,29 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       return true;
     };
 
-    std::vector<std::size_t> rest;
+    // A large round in halves, then what it left (next to the split, postponed) in halves
+    // again, across the first split when it is still large (as the kernel's BRIO rounds),
+    // then the rest in order.
+    std::vector<std::size_t> items, rest, restOfRest;
     for (std::size_t r = 0; r < roundStarts.size() && !stop; ++r)
     {
       const std::size_t begin = roundStarts[r];
       const std::size_t end = r + 1 < roundStarts.size() ? roundStarts[r + 1] : points.size();
-      rest.clear();
-      const bool halves = end - begin >= minHalvesPoints &&
+      items.resize(end - begin);
+      std::iota(items.begin(), items.end(), begin);
+      const bool halvesAllowed =
         result.insertedPoints + static_cast<double>(end - begin) < budget &&
-        (options.latticeBoundaryDistance <= 0 || faces) && insertInHalves(begin, end, rest);
-      if (!halves)
+        (options.latticeBoundaryDistance <= 0 || faces);
+      for (int split = 0; split < 2 && !stop; ++split)
       {
         rest.clear();
-        for (std::size_t i = begin; i < end; ++i)
-          rest.push_back(i);
+        if (!(halvesAllowed && items.size() >= minHalvesPoints && insertInHalves(items, rest)))
+          break;
+        items.swap(rest);
+        result.latticeSecondSplits += split;
       }
-      for (std::size_t i = 0; i < rest.size() && !stop; ++i)
-        insertInOrder(rest[i]);
+      for (std::size_t i = 0; i < items.size() && !stop; ++i)
+        insertInOrder(items[i]);
     }
     if (aborted)
       return finish(false, "refineInterior: aborted");

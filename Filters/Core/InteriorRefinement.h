@@ -95,6 +95,7 @@ struct RefinementResult
   int rejectedByKernel = 0;     // ... refused by insertVertex (on a constraint, duplicate)
   int latticePoints = 0;        // inserted points that came from the lattice prefill
   int latticeHalvesPoints = 0;  // of those, inserted by the two halves (MeshHalves)
+  int latticeSecondSplits = 0;  // rounds whose rest went into halves again
   int splitHalvesPoints = 0;    // edge-splitting points inserted by the two halves
   double estimatedPoints = 0;   // integral of sqrt(2)/h^3 over the initial mesh (see .cxx)
   // Wall time of the parts: sizes, estimate and search grids; lattice candidates; lattice

@@ -36,6 +36,8 @@ void expectSameOnOneAndTwoThreads(const Surface& s, double h)
   // The halves really ran, for the lattice and for the edge splitting.
   EXPECT_GT(one.refinementStats.latticeHalvesPoints, 1000);
   EXPECT_GT(one.refinementStats.splitHalvesPoints, 100);
+  // And a large round's rest (next to the split) went into halves again.
+  EXPECT_GT(one.refinementStats.latticeSecondSplits, 0);
   std::printf("%d lattice points by the halves, %d edge-splitting points, %zu tets\n",
     one.refinementStats.latticeHalvesPoints,
     one.refinementStats.splitHalvesPoints,
