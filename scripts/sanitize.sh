@@ -69,10 +69,10 @@ threads() {
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS=-fsanitize=thread \
     -DCMAKE_EXE_LINKER_FLAGS=-fsanitize=thread >/dev/null
   phase "build kernel tests (TSan)" cmake --build $b -j"$jobs" --target CoreTestDelaunayHalves \
-    CoreTestLatticeHalves CoreTestOptimizerHalves \
+    CoreTestLatticeHalves CoreTestOptimizerHalves CoreTestEdgeGraph \
     CoreTestDelaunay
   phase "two-thread tests (TSan)" ctest --test-dir $b \
-    --output-on-failure -j1 -R 'Core\.Test(Delaunay|LatticeHalves|OptimizerHalves)' ${CTEST_ARGS:-}
+    --output-on-failure -j1 -R 'Core\.Test(Delaunay|LatticeHalves|OptimizerHalves|EdgeGraph)' ${CTEST_ARGS:-}
 }
 
 case $what in

@@ -3,6 +3,7 @@
 #include "BoundarySizeCeiling.h"
 #include "BoundarySizeFloor.h"
 #include "Delaunay.h"
+#include "EdgeGraph.h"
 #include "EpochHashTable.h"
 #include "HilbertSort.h"
 #include "HugePages.h"
@@ -405,144 +406,6 @@ private:
   std::vector<std::int32_t> large_; // faces over kMaxCellsPerFace cells
 };
 
-// Unique edges of the live tets as symmetric CSR adjacency, with for each entry a tet that has
-// the edge. Linear time: entries are bucketed by their smaller vertex (counting sort) and
-// duplicates dropped with a stamp per vertex; the order is the tet order, so deterministic.
-struct EdgeGraph
-{
-  std::vector<std::int32_t> offsets;
-  std::vector<VertexId> targets;
-  std::vector<TetId> tetOf;
-  std::vector<std::int32_t> start, fill, vertexFill;
-  std::vector<VertexId> halfTarget, stamp, blockTarget;
-  std::vector<TetId> halfTet, blockTet;
-  std::vector<std::uint16_t> lowBits; // a half edge's smaller vertex within its block
-
-  // Rebuilt after each refinement round on a slightly larger mesh: a quarter more room than
-  // asked for, so that the next build neither copies the arrays nor faults in fresh pages.
-  // The contents are not kept (every build overwrites them).
-  template<typename T>
-  static void resizeWithRoom(std::vector<T>& v, std::size_t n)
-  {
-    if (v.capacity() < n)
-    {
-      std::vector<T> larger;
-      larger.reserve(n + n / 4);
-      v.swap(larger);
-    }
-    v.resize(n);
-  }
-
-  void build(const TetMesh& mesh)
-  {
-    static const int kEdges[6][2] = { { 0, 1 }, { 0, 2 }, { 0, 3 }, { 1, 2 }, { 1, 3 }, { 2, 3 } };
-    const std::size_t nv = static_cast<std::size_t>(mesh.vertexCount());
-    start.assign(nv + 1, 0);
-    for (TetId t = 0; t < mesh.tetCapacity(); ++t)
-    {
-      if (mesh.isDeleted(t))
-        continue;
-      for (const auto& e : kEdges)
-        ++start[std::min(mesh.vertex(t, e[0]), mesh.vertex(t, e[1])) + 1];
-    }
-    for (std::size_t v = 0; v < nv; ++v)
-      start[v + 1] += start[v];
-    resizeWithRoom(halfTarget, static_cast<std::size_t>(start[nv]));
-    resizeWithRoom(halfTet, halfTarget.size());
-    // The half edges go to their vertex's list in two steps: first to their block of 1024
-    // vertices, where the writes are a few hundred sequential streams, then
-    // within each block (a few hundred kB, in cache). Written straight to their vertex, they
-    // were random writes over the whole arrays: 3/4 of the build (fandisk at h = 0.0103,
-    // 6.6M half edges: 0.11 s of 0.15 s). The order within a list is the same: tet order.
-    constexpr int kBlockShift = 10;
-    constexpr VertexId kBlockMask = (1 << kBlockShift) - 1;
-    const std::size_t blocks = (nv >> kBlockShift) + 1;
-    auto blockStart = [&](std::size_t b) { return start[std::min(nv, b << kBlockShift)]; };
-    fill.resize(blocks);
-    for (std::size_t b = 0; b < blocks; ++b)
-      fill[b] = blockStart(b);
-    resizeWithRoom(lowBits, halfTarget.size());
-    for (TetId t = 0; t < mesh.tetCapacity(); ++t)
-    {
-      if (mesh.isDeleted(t))
-        continue;
-      for (const auto& e : kEdges)
-      {
-        const VertexId a = mesh.vertex(t, e[0]), b = mesh.vertex(t, e[1]);
-        const VertexId lo = std::min(a, b);
-        const std::int32_t at = fill[static_cast<std::size_t>(lo >> kBlockShift)]++;
-        halfTarget[at] = std::max(a, b);
-        halfTet[at] = t;
-        lowBits[at] = static_cast<std::uint16_t>(lo & kBlockMask);
-      }
-    }
-    for (std::size_t b = 0; b < blocks; ++b)
-    {
-      const std::int32_t first = blockStart(b), last = blockStart(b + 1);
-      blockTarget.assign(halfTarget.begin() + first, halfTarget.begin() + last);
-      blockTet.assign(halfTet.begin() + first, halfTet.begin() + last);
-      const std::size_t v0 = b << kBlockShift;
-      const std::size_t v1 = std::min(nv, v0 + (std::size_t{ 1 } << kBlockShift));
-      vertexFill.assign(start.begin() + static_cast<std::ptrdiff_t>(v0),
-        start.begin() + static_cast<std::ptrdiff_t>(v1));
-      for (std::int32_t k = 0; k < last - first; ++k)
-      {
-        const std::int32_t at = vertexFill[lowBits[static_cast<std::size_t>(first + k)]]++;
-        halfTarget[at] = blockTarget[k];
-        halfTet[at] = blockTet[k];
-      }
-    }
-    // Unique half edges, counted per endpoint for the symmetric adjacency.
-    stamp.assign(nv, -1);
-    std::vector<std::int32_t>& degree = fill;
-    degree.assign(nv + 1, 0);
-    for (std::size_t a = 0; a < nv; ++a)
-    {
-      std::int32_t out = start[a];
-      for (std::int32_t k = start[a]; k < start[a + 1]; ++k)
-      {
-        const VertexId b = halfTarget[k];
-        if (stamp[b] == static_cast<VertexId>(a))
-          continue;
-        stamp[b] = static_cast<VertexId>(a);
-        halfTarget[out] = b;
-        halfTet[out++] = halfTet[k];
-        ++degree[a + 1];
-        ++degree[b + 1];
-      }
-      // Entries [out, start[a+1]) are duplicates: mark the end of the unique ones.
-      if (out < start[a + 1])
-        halfTarget[out] = -1;
-    }
-    offsets.assign(nv + 1, 0);
-    for (std::size_t v = 0; v < nv; ++v)
-      offsets[v + 1] = offsets[v] + degree[v + 1];
-    resizeWithRoom(targets, static_cast<std::size_t>(offsets[nv]));
-    resizeWithRoom(tetOf, targets.size());
-    std::vector<std::int32_t>& cursor = degree;
-    cursor.assign(offsets.begin(), offsets.end() - 1);
-    // Neighbours of v: first the smaller ones (filled from their own lists, in increasing
-    // order of the smaller vertex), then the larger ones; deterministic.
-    for (std::size_t a = 0; a < nv; ++a)
-    {
-      for (std::int32_t k = start[a]; k < start[a + 1] && halfTarget[k] >= 0; ++k)
-      {
-        const VertexId b = halfTarget[k];
-        targets[cursor[b]] = static_cast<VertexId>(a);
-        tetOf[cursor[b]++] = halfTet[k];
-      }
-    }
-    for (std::size_t a = 0; a < nv; ++a)
-    {
-      for (std::int32_t k = start[a]; k < start[a + 1] && halfTarget[k] >= 0; ++k)
-      {
-        targets[cursor[a]] = halfTarget[k];
-        tetOf[cursor[a]++] = halfTet[k];
-      }
-    }
-  }
-};
-
 // The constrained faces and, at their vertices, the surface's own size: the mean length of the
 // constrained edges there, graded like h (a vertex next to a small feature gets less). Sizes
 // of vertices on no constrained face are the largest double.
@@ -713,7 +576,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   }
 
   EdgeGraph graph;
-  graph.build(mesh);
+  graph.build(mesh, wantTwoThreads(0));
 
   // Sizes of the initial vertices: given, else background, else the mean of known neighbours.
   std::vector<double>& h = vertexSize;
@@ -1852,7 +1715,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   for (int round = 0; round < options.maxRounds; ++round)
   {
     if (round > 0 || result.latticePoints > 0)
-      graph.build(mesh);
+      graph.build(mesh, wantTwoThreads(0));
     if (sizeOptions.gradation > 1)
     {
       const VertexId count = mesh.vertexCount();

@@ -1,0 +1,47 @@
+// The unique edges of a mesh's live tets as a symmetric CSR adjacency, each entry with a tet
+// that has the edge: the refinement's edge splitting and size gradation walk it after every
+// round. Linear time: half edges are bucketed by their smaller vertex (counting sort), duplicates
+// dropped with a stamp per vertex. Large meshes are built in two halves side by side (tets, then
+// vertex ranges); the arrays are the same either way.
+#pragma once
+
+#include "TetMesh.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace tetmesher
+{
+
+class EdgeGraph
+{
+public:
+  // Rebuilds from the live tets of `mesh`, on two threads when twoThreads and the mesh is large.
+  void build(const TetMesh& mesh, bool twoThreads);
+
+  // The neighbours of v are targets[offsets[v] .. offsets[v + 1]): first the smaller ones in
+  // increasing order, then the larger ones in the order of the first tet (by id) that has the
+  // edge; tetOf[k] is a tet with edge (v, targets[k]) (for a smaller neighbour u, the one of u's
+  // entry).
+  std::vector<std::int32_t> offsets;
+  std::vector<VertexId> targets;
+  std::vector<TetId> tetOf;
+
+private:
+  // Scratch of one half of the work.
+  struct Half
+  {
+    std::vector<std::int32_t> count, fill, incoming, cursor;
+    std::vector<VertexId> stamp, blockTarget;
+    std::vector<TetId> blockTet;
+    std::vector<std::int32_t> vertexFill;
+  };
+  std::vector<std::int32_t> start_, unique_;
+  std::vector<VertexId> halfTarget_;
+  std::vector<TetId> halfTet_;
+  std::vector<std::uint16_t> lowBits_; // a half edge's smaller vertex within its block
+  Half half_[2];
+};
+
+} // namespace tetmesher
