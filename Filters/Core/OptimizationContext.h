@@ -376,15 +376,9 @@ public:
     cache_->values[i] = e;
     cache_->valid[i] = 1;
   }
-  // Sizes the cache to the mesh's tet slots (before halves work on it: they must not grow
-  // it) and measures every live tet not measured yet.
-  void measureAll() const
-  {
-    growCache();
-    for (TetId t = 0; t < mesh.tetCapacity(); ++t)
-      if (!mesh.isDeleted(t))
-        quality(t);
-  }
+  // Sizes the cache to the mesh's tet slots: two threads that use it (the optimiser's halves)
+  // must not grow it.
+  void reserveCache() const { growCache(); }
   // Takes over the cache of `other`, a Context on the same mesh and sizes that may drive by
   // another measure (the next stage of optimizeMesh): Q and the angle do not depend on the
   // measure, so only the scores are redone, and the mesh is not measured again.

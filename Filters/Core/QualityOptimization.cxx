@@ -123,6 +123,12 @@ private:
   // The bad tets (worst first, ties by id: deterministic); with setFloors, also the pass's
   // floors, the mesh's minima now (as summarize gives them). One scan of every tet for both.
   void collectBad(BadList& bad, bool setFloors);
+  // body(k, first, last) over the tet slots in two halves, side by side on large meshes: the
+  // split depends on the mesh alone, so what the halves gather is the same on one thread or
+  // two. Every slot measured (summarizeBefore) was 0.08 s of fandisk at h = 0.0103.
+  template<typename Body>
+  void scanInHalves(const Body& body) const;
+  static constexpr TetId kMinTetsForScanHalves = 65536;
   // False, and nothing changed, when w's pool lacks the slots.
   bool apply(Worker& w, const LocalMove& mv, std::vector<TetId>& created);
   bool improveTet(Worker& w, TetId t, std::vector<TetId>& created);
@@ -251,29 +257,56 @@ bool Optimizer::smooth(Worker& w, VertexId v)
   return false;
 }
 
+template<typename Body>
+void Optimizer::scanInHalves(const Body& body) const
+{
+  ctx_.reserveCache(); // quality() must not grow it while both halves run
+  const TetId n = ctx_.mesh.tetCapacity();
+  const bool split = n >= kMinTetsForScanHalves;
+  const TetId middle = split ? n / 2 : n;
+  runPair(split && wantTwoThreads(0),
+    [&](int k)
+    {
+      if (k == 0)
+        body(0, TetId(0), middle);
+      else
+        body(1, middle, n);
+    });
+}
+
 void Optimizer::summarize(double& minQ,
   double& meanQ,
   double& minDihCosine,
   double& share,
   int& count) const
 {
-  minQ = kInf;
-  minDihCosine = kInf;
-  double sum = 0;
-  int below = 0;
-  count = 0;
-  for (TetId t = 0; t < ctx_.mesh.tetCapacity(); ++t)
+  struct Part
   {
-    if (ctx_.mesh.isDeleted(t))
-      continue;
-    TetEval e = ctx_.quality(t);
-    minQ = std::min(minQ, e.q);
-    minDihCosine = std::min(minDihCosine, e.dihCosine);
-    sum += e.q;
-    if (e.score < ctx_.options.qualityTarget)
-      ++below;
-    ++count;
-  }
+    double minQ = kInf, minDihCosine = kInf, sum = 0;
+    int below = 0, count = 0;
+  } part[2];
+  scanInHalves(
+    [&](int k, TetId first, TetId last)
+    {
+      Part& me = part[k];
+      for (TetId t = first; t < last; ++t)
+      {
+        if (ctx_.mesh.isDeleted(t))
+          continue;
+        const TetEval e = ctx_.quality(t);
+        me.minQ = std::min(me.minQ, e.q);
+        me.minDihCosine = std::min(me.minDihCosine, e.dihCosine);
+        me.sum += e.q;
+        if (e.score < ctx_.options.qualityTarget)
+          ++me.below;
+        ++me.count;
+      }
+    });
+  minQ = std::min(part[0].minQ, part[1].minQ);
+  minDihCosine = std::min(part[0].minDihCosine, part[1].minDihCosine);
+  const double sum = part[0].sum + part[1].sum;
+  const int below = part[0].below + part[1].below;
+  count = part[0].count + part[1].count;
   if (count == 0)
   {
     minQ = meanQ = share = 0;
@@ -286,25 +319,36 @@ void Optimizer::summarize(double& minQ,
 
 void Optimizer::collectBad(BadList& bad, bool setFloors)
 {
-  bad.clear();
-  double minQ = kInf, minDihCosine = kInf;
-  bool any = false;
-  for (TetId t = 0; t < ctx_.mesh.tetCapacity(); ++t)
-    if (!ctx_.mesh.isDeleted(t))
+  struct Part
+  {
+    double minQ = kInf, minDihCosine = kInf;
+    bool any = false;
+    BadList bad;
+  } part[2];
+  scanInHalves(
+    [&](int k, TetId first, TetId last)
     {
-      const TetEval e = ctx_.quality(t);
-      minQ = std::min(minQ, e.q);
-      minDihCosine = std::min(minDihCosine, e.dihCosine);
-      any = true;
-      if (e.score < ctx_.options.qualityTarget)
-        bad.push_back({ e.score, t });
-    }
+      Part& me = part[k];
+      for (TetId t = first; t < last; ++t)
+        if (!ctx_.mesh.isDeleted(t))
+        {
+          const TetEval e = ctx_.quality(t);
+          me.minQ = std::min(me.minQ, e.q);
+          me.minDihCosine = std::min(me.minDihCosine, e.dihCosine);
+          me.any = true;
+          if (e.score < ctx_.options.qualityTarget)
+            me.bad.push_back({ e.score, t });
+        }
+    });
+  bad.swap(part[0].bad);
+  bad.insert(bad.end(), part[1].bad.begin(), part[1].bad.end());
   if (setFloors)
   {
-    ctx_.floorQ = any ? minQ : 0;
-    ctx_.floorDihCosine = any ? minDihCosine : -2;
+    const bool any = part[0].any || part[1].any;
+    ctx_.floorQ = any ? std::min(part[0].minQ, part[1].minQ) : 0;
+    ctx_.floorDihCosine = any ? std::min(part[0].minDihCosine, part[1].minDihCosine) : -2;
   }
-  std::sort(bad.begin(), bad.end());
+  std::sort(bad.begin(), bad.end()); // (score, id): the same order however it was gathered
 }
 
 bool Optimizer::apply(Worker& w, const LocalMove& mv, std::vector<TetId>& created)
@@ -549,7 +593,7 @@ void Optimizer::sizeForHalves()
 {
   const std::size_t nv = static_cast<std::size_t>(ctx_.mesh.vertexCount());
   const std::size_t nt = static_cast<std::size_t>(ctx_.mesh.tetCapacity());
-  ctx_.measureAll();
+  ctx_.reserveCache(); // every live tet is measured (collectBad)
   if (ctx_.rm.region.size() < nt)
     ctx_.rm.region.resize(nt, 0);
   queued_.resize(nt, 0);
