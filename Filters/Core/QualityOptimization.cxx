@@ -605,11 +605,11 @@ void Optimizer::sizeForHalves()
     smoothFailed_.resize(nv, 0);
   }
   passMoves_.resize(std::max(passMoves_.size(), nv), 0);
-  // Each free vertex's index entry current: a half may only read its own vertices' (a stale
-  // one would rebuild the whole index).
+  // Every free vertex's index entry current (tetOf rebuilds the index at the first stale
+  // one): a half reads its own vertices' entries, and must not rebuild the whole index.
   for (std::size_t v = 0; v < nv; ++v)
-    if (!ctx_.fixed[v] && ctx_.index.tetOf(ctx_.mesh, static_cast<VertexId>(v)) < 0)
-      break; // tetOf rebuilt the index: every entry is current
+    if (!ctx_.fixed[v])
+      ctx_.index.tetOf(ctx_.mesh, static_cast<VertexId>(v));
 }
 
 void Optimizer::passInHalves(BadList& bad, bool swept)
