@@ -1632,6 +1632,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   // only adds edges at the new vertex), so the sizes come out the same as from every vertex.
   VertexId gradedCount = 0;
   std::vector<VertexId> seeds, seedStamp;
+  constexpr VertexId kMinVerticesForScanHalves = 16384;
   bool aborted = false;
   // One edge-splitting round's candidates in two halves (see HalvesPhase): a side takes the
   // edges with both ends on its side, the split point farther from the split than the margin,
@@ -1749,28 +1750,45 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
         static_cast<std::int32_t>(seeds.size()));
       gradedCount = count;
     }
-    candidates.clear();
+    // The edges too long, from each half of the vertices (by their edges) side by side on
+    // large meshes; in vertex order, then sorted: the same on one thread or two.
     const VertexId nv = mesh.vertexCount();
-    for (VertexId a = 0; a < nv; ++a)
-    {
-      for (std::int32_t k = graph.offsets[a]; k < graph.offsets[a + 1]; ++k)
+    const bool scanHalves = nv >= kMinVerticesForScanHalves;
+    const VertexId middle = scanHalves
+      ? static_cast<VertexId>(std::lower_bound(graph.offsets.begin(),
+                                graph.offsets.end(),
+                                graph.offsets[static_cast<std::size_t>(nv)] / 2) -
+          graph.offsets.begin())
+      : nv;
+    std::vector<Candidate> secondHalf;
+    candidates.clear();
+    runPair(scanHalves && wantTwoThreads(0),
+      [&](int half)
       {
-        const VertexId b = graph.targets[k];
-        if (b < a)
-          continue;
-        if (a < initialCount && b < initialCount && onConstraint[a] && onConstraint[b] &&
-          constrainedEdges.find(edgeKey(a, b)))
-          continue;
-        const double length = distance(mesh.point(a), mesh.point(b)) * 0.5 * (1 / h[a] + 1 / h[b]);
-        if (!(length > options.maxEdgeRatio))
-          continue;
-        double p[3];
-        splitPoint(a, b, p);
-        const std::uint64_t lengthClass =
-          static_cast<std::uint64_t>(std::min(15.0, std::log2(length / options.maxEdgeRatio)));
-        candidates.push_back({ ((15 - lengthClass) << 48) | hilbertKey(p), a, b, graph.tetOf[k] });
-      }
-    }
+        std::vector<Candidate>& out = half == 0 ? candidates : secondHalf;
+        for (VertexId a = half == 0 ? 0 : middle; a < (half == 0 ? middle : nv); ++a)
+        {
+          for (std::int32_t k = graph.offsets[a]; k < graph.offsets[a + 1]; ++k)
+          {
+            const VertexId b = graph.targets[k];
+            if (b < a)
+              continue;
+            if (a < initialCount && b < initialCount && onConstraint[a] && onConstraint[b] &&
+              constrainedEdges.find(edgeKey(a, b)))
+              continue;
+            const double length =
+              distance(mesh.point(a), mesh.point(b)) * 0.5 * (1 / h[a] + 1 / h[b]);
+            if (!(length > options.maxEdgeRatio))
+              continue;
+            double p[3];
+            splitPoint(a, b, p);
+            const std::uint64_t lengthClass =
+              static_cast<std::uint64_t>(std::min(15.0, std::log2(length / options.maxEdgeRatio)));
+            out.push_back({ ((15 - lengthClass) << 48) | hilbertKey(p), a, b, graph.tetOf[k] });
+          }
+        }
+      });
+    candidates.insert(candidates.end(), secondHalf.begin(), secondHalf.end());
     if (candidates.empty())
       break;
     result.rounds = round + 1;

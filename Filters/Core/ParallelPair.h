@@ -22,7 +22,9 @@ inline bool wantTwoThreads(int threads)
     const char* setting = std::getenv("TETMESHER_THREADS");
     if (setting && std::atoi(setting) == 1)
       return false;
-    return std::thread::hardware_concurrency() >= 2;
+    // Asked once: glibc reads /sys/devices/system/cpu/online on every call.
+    static const unsigned cpus = std::thread::hardware_concurrency();
+    return cpus >= 2;
   }
   return threads >= 2;
 }
