@@ -55,10 +55,17 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
   // Halves of the tets for the first two steps; of the blocks and of the vertices (by their
   // half edges) for the others.
   const TetId tetMiddle = capacity / 2;
-  auto tetsOf = [&](int k, TetId& first, TetId& last)
+  // fn(t, a, b) for the 6 edges (a, b) of every live tet t of half k of the slots, in order.
+  auto forEdgesOfHalf = [&](int k, const auto& fn)
   {
-    first = k == 0 ? 0 : tetMiddle;
-    last = k == 0 ? tetMiddle : capacity;
+    const TetId first = k == 0 ? 0 : tetMiddle, last = k == 0 ? tetMiddle : capacity;
+    for (TetId t = first; t < last; ++t)
+    {
+      if (mesh.isDeleted(t))
+        continue;
+      for (const auto& e : kEdges)
+        fn(t, mesh.vertex(t, e[0]), mesh.vertex(t, e[1]));
+    }
   };
 
   // 1. Half edges per smaller vertex, counted by each half of the tets.
@@ -67,16 +74,9 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
     {
       std::vector<std::int32_t>& count = half_[k].count;
       count.assign(nv + 1, 0);
-      TetId first, last;
-      tetsOf(k, first, last);
-      for (TetId t = first; t < last; ++t)
-      {
-        if (mesh.isDeleted(t))
-          continue;
-        for (const auto& e : kEdges)
-          ++count[static_cast<std::size_t>(std::min(mesh.vertex(t, e[0]), mesh.vertex(t, e[1]))) +
-            1];
-      }
+      forEdgesOfHalf(k,
+        [&](TetId, VertexId a, VertexId b)
+        { ++count[static_cast<std::size_t>(std::min(a, b)) + 1]; });
     });
   start_.assign(nv + 1, 0);
   for (std::size_t v = 0; v < nv; ++v)
@@ -104,22 +104,15 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
     [&](int k)
     {
       std::vector<std::int32_t>& fill = half_[k].fill;
-      TetId first, last;
-      tetsOf(k, first, last);
-      for (TetId t = first; t < last; ++t)
-      {
-        if (mesh.isDeleted(t))
-          continue;
-        for (const auto& e : kEdges)
+      forEdgesOfHalf(k,
+        [&](TetId t, VertexId a, VertexId b)
         {
-          const VertexId a = mesh.vertex(t, e[0]), b = mesh.vertex(t, e[1]);
           const VertexId lo = std::min(a, b);
           const std::int32_t at = fill[static_cast<std::size_t>(lo >> kBlockShift)]++;
           halfTarget_[static_cast<std::size_t>(at)] = std::max(a, b);
           halfTet_[static_cast<std::size_t>(at)] = t;
           lowBits_[static_cast<std::size_t>(at)] = static_cast<std::uint16_t>(lo & kBlockMask);
-        }
-      }
+        });
     });
 
   // 3. Within each block to their vertex, keeping the order (halves of the blocks).
