@@ -83,12 +83,12 @@ BoundarySizeFloor::BoundarySizeFloor(const double* points,
   const std::size_t middleFace = faces_.size() / 2;
   std::vector<Listing> halfListings[2];
   std::vector<std::int32_t> halfLarge[2];
-  runPair(twoThreads,
-    [&](int half)
+  splitAt(twoThreads,
+    middleFace,
+    faces_.size(),
+    [&](int half, std::size_t firstFace, std::size_t lastFace)
     {
       std::vector<Listing>& listings = halfListings[half];
-      const std::size_t firstFace = half == 0 ? 0 : middleFace;
-      const std::size_t lastFace = half == 0 ? middleFace : faces_.size();
       // Reserved, not touched (no memory until written): 40-50 cells per face on the corpus.
       listings.reserve(64 * (lastFace - firstFace));
       for (std::size_t id = firstFace; id < lastFace; ++id)
@@ -174,10 +174,12 @@ BoundarySizeFloor::BoundarySizeFloor(const double* points,
   for (std::size_t n = 0; n < listings.size(); ++n)
     entries_[fill[static_cast<std::size_t>(cellOfListing[n])]++] = listings[n].entry;
   const std::size_t cells = static_cast<std::size_t>(cellCount);
-  runPair(twoThreads,
-    [&](int half)
+  splitAt(twoThreads,
+    cells / 2,
+    cells,
+    [&](int, std::size_t firstCell, std::size_t lastCell)
     {
-      for (std::size_t c = half == 0 ? 0 : cells / 2; c < (half == 0 ? cells / 2 : cells); ++c)
+      for (std::size_t c = firstCell; c < lastCell; ++c)
         std::sort(entries_.begin() + static_cast<std::ptrdiff_t>(cellStart_[c]),
           entries_.begin() + static_cast<std::ptrdiff_t>(cellStart_[c + 1]),
           [](const Entry& x, const Entry& y)

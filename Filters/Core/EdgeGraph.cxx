@@ -55,10 +55,9 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
   // Halves of the tets for the first two steps; of the blocks and of the vertices (by their
   // half edges) for the others.
   const TetId tetMiddle = capacity / 2;
-  // fn(t, a, b) for the 6 edges (a, b) of every live tet t of half k of the slots, in order.
-  auto forEdgesOfHalf = [&](int k, const auto& fn)
+  // fn(t, a, b) for the 6 edges (a, b) of every live tet t of [first, last), in order.
+  auto forEdgesOf = [&](TetId first, TetId last, const auto& fn)
   {
-    const TetId first = k == 0 ? 0 : tetMiddle, last = k == 0 ? tetMiddle : capacity;
     for (TetId t = first; t < last; ++t)
     {
       if (mesh.isDeleted(t))
@@ -69,12 +68,15 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
   };
 
   // 1. Half edges per smaller vertex, counted by each half of the tets.
-  runPair(twoThreads,
-    [&](int k)
+  splitAt(twoThreads,
+    tetMiddle,
+    capacity,
+    [&](int k, TetId first, TetId last)
     {
       std::vector<std::int32_t>& count = half_[k].count;
       count.assign(nv + 1, 0);
-      forEdgesOfHalf(k,
+      forEdgesOf(first,
+        last,
         [&](TetId, VertexId a, VertexId b)
         { ++count[static_cast<std::size_t>(std::min(a, b)) + 1]; });
     });
@@ -100,11 +102,14 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
     half_[0].fill[b] = blockStart(b);
     half_[1].fill[b] = blockStart(b) + firstHalf;
   }
-  runPair(twoThreads,
-    [&](int k)
+  splitAt(twoThreads,
+    tetMiddle,
+    capacity,
+    [&](int k, TetId first, TetId last)
     {
       std::vector<std::int32_t>& fill = half_[k].fill;
-      forEdgesOfHalf(k,
+      forEdgesOf(first,
+        last,
         [&](TetId t, VertexId a, VertexId b)
         {
           const VertexId lo = std::min(a, b);
@@ -120,12 +125,12 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
   for (std::size_t b = 0; b <= blocks; ++b)
     blockStarts[b] = blockStart(b);
   const std::size_t blockMiddle = halfWay(blockStarts, blocks);
-  runPair(twoThreads,
-    [&](int k)
+  splitAt(twoThreads,
+    blockMiddle,
+    blocks,
+    [&](int k, std::size_t firstBlock, std::size_t lastBlock)
     {
       Half& me = half_[k];
-      const std::size_t firstBlock = k == 0 ? 0 : blockMiddle;
-      const std::size_t lastBlock = k == 0 ? blockMiddle : blocks;
       for (std::size_t b = firstBlock; b < lastBlock; ++b)
       {
         const std::int32_t first = blockStart(b), last = blockStart(b + 1);
@@ -149,14 +154,14 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
   // smaller ones (incoming; the halves' stamps and counts are their own).
   const std::size_t vertexMiddle = halfWay(start_, nv);
   unique_.assign(nv, 0);
-  runPair(twoThreads,
-    [&](int k)
+  splitAt(twoThreads,
+    vertexMiddle,
+    nv,
+    [&](int k, std::size_t firstVertex, std::size_t lastVertex)
     {
       Half& me = half_[k];
       me.stamp.assign(nv, -1);
       me.incoming.assign(nv, 0);
-      const std::size_t firstVertex = k == 0 ? 0 : vertexMiddle;
-      const std::size_t lastVertex = k == 0 ? vertexMiddle : nv;
       for (std::size_t a = firstVertex; a < lastVertex; ++a)
       {
         std::int32_t out = start_[a];
@@ -184,15 +189,15 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
     offsets[v + 1] = offsets[v] + half_[0].incoming[v] + half_[1].incoming[v] + unique_[v];
   resizeWithRoom(targets, static_cast<std::size_t>(offsets[nv]));
   resizeWithRoom(tetOf, targets.size());
-  runPair(twoThreads,
-    [&](int k)
+  splitAt(twoThreads,
+    vertexMiddle,
+    nv,
+    [&](int k, std::size_t firstVertex, std::size_t lastVertex)
     {
       Half& me = half_[k];
       me.cursor.resize(nv);
       for (std::size_t v = 0; v < nv; ++v)
         me.cursor[v] = offsets[v] + (k == 1 ? half_[0].incoming[v] : 0);
-      const std::size_t firstVertex = k == 0 ? 0 : vertexMiddle;
-      const std::size_t lastVertex = k == 0 ? vertexMiddle : nv;
       for (std::size_t a = firstVertex; a < lastVertex; ++a)
       {
         std::int32_t own = offsets[a] + half_[0].incoming[a] + half_[1].incoming[a];

@@ -1762,11 +1762,13 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       : nv;
     std::vector<Candidate> secondHalf;
     candidates.clear();
-    runPair(scanHalves && wantTwoThreads(0),
-      [&](int half)
+    splitAt(scanHalves && wantTwoThreads(0),
+      middle,
+      nv,
+      [&](int half, VertexId first, VertexId last)
       {
         std::vector<Candidate>& out = half == 0 ? candidates : secondHalf;
-        for (VertexId a = half == 0 ? 0 : middle; a < (half == 0 ? middle : nv); ++a)
+        for (VertexId a = first; a < last; ++a)
         {
           for (std::int32_t k = graph.offsets[a]; k < graph.offsets[a + 1]; ++k)
           {

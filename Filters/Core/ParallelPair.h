@@ -74,6 +74,22 @@ void runPair(bool twoThreads, Work&& work)
     std::rethrow_exception(failure);
 }
 
+// body(0, 0, middle) and body(1, middle, end), side by side when twoThreads. The caller fixes
+// the split (not the thread count), so what each half gathers, and the order the caller
+// joins them in, is the same on one thread or two.
+template<typename Index, typename Body>
+void splitAt(bool twoThreads, Index middle, Index end, Body&& body)
+{
+  runPair(twoThreads,
+    [&](int k)
+    {
+      if (k == 0)
+        body(0, Index(0), middle);
+      else
+        body(1, middle, end);
+    });
+}
+
 // Calls body(begin, end) on the two halves of [0, count), side by side when twoThreads and
 // count reaches minCount.
 template<typename Body>

@@ -273,14 +273,7 @@ void Optimizer::scanInHalves(const Body& body) const
   const TetId n = ctx_.mesh.tetCapacity();
   const bool split = n >= kMinTetsForScanHalves;
   const TetId middle = split ? n / 2 : n;
-  runPair(split && wantTwoThreads(0),
-    [&](int k)
-    {
-      if (k == 0)
-        body(0, TetId(0), middle);
-      else
-        body(1, middle, n);
-    });
+  splitAt(split && wantTwoThreads(0), middle, n, body);
 }
 
 void Optimizer::summarize(double& minQ,
