@@ -608,11 +608,6 @@ void Optimizer::sizeForHalves()
     smoothFailed_.resize(nv, 0);
   }
   passMoves_.resize(std::max(passMoves_.size(), nv), 0);
-  // Every free vertex's index entry current (tetOf rebuilds the index at the first stale
-  // one): a half reads its own vertices' entries, and must not rebuild the whole index.
-  for (std::size_t v = 0; v < nv; ++v)
-    if (!ctx_.fixed[v])
-      ctx_.index.tetOf(ctx_.mesh, static_cast<VertexId>(v));
 }
 
 void Optimizer::passInHalves(BadList& bad, bool swept)
@@ -656,6 +651,12 @@ void Optimizer::passInHalves(BadList& bad, bool swept)
   };
   partition();
   sizeForHalves();
+  // Every free vertex's index entry current (tetOf rebuilds the index at the first stale
+  // one): a half reads its own vertices' entries, and must not rebuild the whole index. Once
+  // per pass: smoothing and moves keep the entries current.
+  for (std::size_t v = 0; v < nv; ++v)
+    if (!ctx_.fixed[v])
+      ctx_.index.tetOf(ctx_.mesh, static_cast<VertexId>(v));
 
   const bool twoThreads = wantTwoThreads(0);
   VertexTetIndex secondIndex;
