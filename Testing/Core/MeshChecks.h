@@ -3,6 +3,7 @@
 // pass by sharing a bug with the predicates under test.
 #pragma once
 
+#include "../Fuzz/PipelineAsMesherResult.h"
 #include "Mesher.h"
 #include "SurfaceGenerators.h"
 #include "VolumeMesher.h"
@@ -21,22 +22,6 @@ namespace tetmesher
 {
 namespace testing
 {
-
-// A whole-pipeline result seen as a boundary mesher's, for checkMesh: its points beyond the
-// input's are counted as Steiner points (checkMesh requires none on the surface).
-inline MesherResult asMesherResult(const VolumeMeshResult& v, std::int32_t inputPoints)
-{
-  MesherResult r;
-  r.ok = v.ok;
-  r.error = v.error;
-  r.points = v.points;
-  r.tets = v.tets;
-  r.regionIds = v.regionIds;
-  r.boundaryFaceTet = v.boundaryFaceTet;
-  r.regionCount = v.regionCount;
-  r.steinerPoints = static_cast<int>(v.points.size() / 3) - inputPoints;
-  return r;
-}
 
 // 6 x signed volume of (a,b,c,d) = det[b-a; c-a; d-a], exact.
 inline mpq_class det6(const double* a, const double* b, const double* c, const double* d)

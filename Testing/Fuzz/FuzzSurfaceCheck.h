@@ -15,6 +15,7 @@
 #include "FuzzSurfaceInput.h"
 
 #include "Mesher.h"
+#include "PipelineAsMesherResult.h"
 #include "Predicates.h"
 #include "SurfaceDiagnosis.h"
 #include "VolumeMesher.h"
@@ -149,15 +150,7 @@ inline std::string runFuzzSurface(const std::uint8_t* data, std::size_t size)
   const VolumeMeshResult v = meshVolume(s.points.data(), n, s.triangles.data(), m, volumeOptions);
   if (!v.ok)
     return v.error.empty() ? "meshVolume failed without a message" : std::string();
-  MesherResult whole;
-  whole.ok = true;
-  whole.points = v.points;
-  whole.tets = v.tets;
-  whole.regionIds = v.regionIds;
-  whole.boundaryFaceTet = v.boundaryFaceTet;
-  whole.regionCount = v.regionCount;
-  whole.steinerPoints = static_cast<int>(v.points.size() / 3) - n;
-  problem = checkMesh(s, whole);
+  problem = checkMesh(s, asMesherResult(v, n));
   return problem.empty() ? problem : "meshVolume: " + problem;
 }
 
