@@ -18,6 +18,8 @@
 #include "vtkXMLUnstructuredGridWriter.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <limits>
 #include <dlfcn.h>
 #include <sstream>
 #include <vector>
@@ -400,6 +402,17 @@ vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path)
   return surface;
 }
 
+namespace
+{
+// Point ids and the cells' offsets below 2^31.
+bool CellIdsFitInt32(vtkUnstructuredGrid* mesh)
+{
+  constexpr vtkIdType kMax = std::numeric_limits<std::int32_t>::max();
+  return mesh->GetCells() && mesh->GetNumberOfPoints() <= kMax &&
+    mesh->GetCells()->GetNumberOfConnectivityIds() <= kMax;
+}
+} // namespace
+
 void WriteVolumeMesh(vtkUnstructuredGrid* mesh, const std::string& path, bool compress)
 {
   const std::string ext = LowerExtension(path);
@@ -413,6 +426,9 @@ void WriteVolumeMesh(vtkUnstructuredGrid* mesh, const std::string& path, bool co
     // to the size and its encoding time.
     writer->SetDataModeToAppended();
     writer->SetEncodeAppendedData(false);
+    // The cells' ids as Int32 where they fit, as the lean writer (WriteVtu) stores them.
+    if (CellIdsFitInt32(mesh))
+      mesh->GetCells()->ConvertTo32BitStorage();
     if (compress)
       writer->SetCompressorTypeToZLib();
     else
