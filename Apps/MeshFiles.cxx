@@ -19,8 +19,8 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <limits>
 #include <dlfcn.h>
+#include <limits>
 #include <sstream>
 #include <vector>
 

@@ -1864,8 +1864,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     // many).
     const std::size_t few = static_cast<std::size_t>(insertedThisRound);
     if (insertedThisRound == 0 || result.budgetReached ||
-      (10 * few < candidates.size() &&
-        100 * few < static_cast<std::size_t>(result.insertedPoints)))
+      (10 * few < candidates.size() && 100 * few < static_cast<std::size_t>(result.insertedPoints)))
       break;
   }
   result.splitSeconds = lap();
