@@ -194,6 +194,7 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
     }
   }
   std::vector<std::int32_t>().swap(result.tetFaceTriangle); // used up
+  std::vector<std::int32_t>().swap(result.tets);            // out.cells has them
   lap("output conversion");
 
   std::string qualityError;
@@ -215,24 +216,8 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
   out.fieldData.emplace_back("MeshingSeconds", result.seconds);
   lap("quality arrays");
 
-  // The paper's figure 6 shows the histogram before and after optimisation. Only Q is used:
-  // measureTetQuality gives it bit for bit without the dihedral angles.
-  std::vector<double> before(result.tetsBeforeOptimization.size() / 4);
-  constexpr std::size_t kMinHalves = 32768;
-  forHalves(before.size(),
-    wantTwoThreads(0),
-    kMinHalves,
-    [&](std::size_t begin, std::size_t end)
-    {
-      for (std::size_t t = begin; t < end; ++t)
-      {
-        const double* p[4];
-        for (int i = 0; i < 4; ++i)
-          p[i] = &result.points[3 *
-            static_cast<std::size_t>(result.tetsBeforeOptimization[4 * t + kVtkFromCore[i]])];
-        before[t] = measureTetQuality(p[0], p[1], p[2], p[3]);
-      }
-    });
+  // The paper's figure 6 shows the histogram before and after optimisation.
+  const std::vector<double>& before = result.qualityBeforeOptimization;
   double minimumBefore = std::numeric_limits<double>::infinity();
   for (double q : before)
     minimumBefore = std::min(minimumBefore, q);
@@ -241,6 +226,7 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
     out.histogramBefore = qualityHistogram(before, settings.numberOfBins);
     out.fieldData.emplace_back("QualityMinimumBeforeOptimization", minimumBefore);
   }
+  std::vector<double>().swap(result.qualityBeforeOptimization); // used up
   lap("histograms");
   progress(1.0);
   out.ok = true;

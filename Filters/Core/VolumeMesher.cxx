@@ -1,7 +1,9 @@
 #include "VolumeMesher.h"
 
 #include "MeshAssembly.h"
+#include "ParallelPair.h"
 #include "SizeField.h"
+#include "TetQuality.h"
 
 #include <algorithm>
 #include <chrono>
@@ -19,6 +21,30 @@ std::function<bool(double)> subProgress(const std::function<bool(double)>& progr
   if (!progress)
     return {};
   return [progress, begin, end](double p) { return progress(begin + (end - begin) * p); };
+}
+
+// Q (measureTetQuality, VTK's vertex order) of every live tet, in slot order, from the two
+// halves of the slots side by side on large meshes (the same values either way).
+std::vector<double> liveTetQualities(const TetMesh& mesh)
+{
+  constexpr TetId kMinHalves = 32768;
+  const TetId capacity = mesh.tetCapacity();
+  std::vector<double> half[2];
+  splitAt(capacity >= kMinHalves && wantTwoThreads(0),
+    capacity / 2,
+    capacity,
+    [&](int k, TetId first, TetId last)
+    {
+      for (TetId t = first; t < last; ++t)
+        if (!mesh.isDeleted(t))
+          // The core's orientation is the reverse of VTK's: vertices 0 and 1 swapped.
+          half[k].push_back(measureTetQuality(mesh.point(mesh.vertex(t, 1)),
+            mesh.point(mesh.vertex(t, 0)),
+            mesh.point(mesh.vertex(t, 2)),
+            mesh.point(mesh.vertex(t, 3))));
+    });
+  half[0].insert(half[0].end(), half[1].begin(), half[1].end());
+  return std::move(half[0]);
 }
 } // namespace
 
@@ -125,10 +151,9 @@ VolumeMeshResult meshVolume(const double* points,
         { "lattice insertion", r.latticeInsertSeconds },
         { "edge splitting", r.splitSeconds } });
   }
-  std::vector<double> unusedPoints;
-  std::vector<std::int32_t> unusedRegions;
-  extractRegionMesh(mesh, unusedPoints, result.tetsBeforeOptimization, unusedRegions);
-  lap("extraction before optimisation");
+  // Measured now: optimisation moves points, so the tets measured later would not be these.
+  result.qualityBeforeOptimization = liveTetQualities(mesh.mesh);
+  lap("quality before optimisation");
   if (options.optimize)
   {
     // Quality in units of h only when a size field was computed by refinement.
@@ -136,7 +161,7 @@ VolumeMeshResult meshVolume(const double* points,
     const std::int64_t budget = options.optimizationPolls < 0 ? -1
                                                               : options.optimizationPolls +
         static_cast<std::int64_t>(options.optimizationPollsPerTet *
-          static_cast<double>(result.tetsBeforeOptimization.size() / 4));
+          static_cast<double>(result.qualityBeforeOptimization.size()));
     std::int64_t polls = 0;
     bool outOfWork = false, aborted = false;
     auto stageProgress = subProgress(progress, refineEnd, 1.0);

@@ -59,9 +59,10 @@ struct VolumeMeshResult
   // Per tet face 4*t+f: the input triangle it lies on, or -1 (tetFaceTriangles); empty when
   // the boundary mesh is the result.
   std::vector<std::int32_t> tetFaceTriangle;
-  std::vector<std::int32_t> tetsBeforeOptimization; // for the before/after histogram
-  int steinerPoints = 0;                            // recovery points
-  int interiorPoints = 0;                           // refinement points
+  // Q (TetQuality.h's measure) of every tet before optimisation, for the before/after histogram.
+  std::vector<double> qualityBeforeOptimization;
+  int steinerPoints = 0;  // recovery points
+  int interiorPoints = 0; // refinement points
   int regionCount = 0;
   MesherResult boundaryStats; // timings and counters of the boundary stage
   RefinementResult refinementStats;
