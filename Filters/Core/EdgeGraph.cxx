@@ -66,6 +66,14 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
         fn(t, mesh.vertex(t, e[0]), mesh.vertex(t, e[1]));
     }
   };
+  // splitAt over [first, last) (splitAt's ranges start at 0).
+  auto splitRange = [&](std::size_t first, std::size_t middle, std::size_t last, const auto& body)
+  {
+    splitAt(twoThreads,
+      middle - first,
+      last - first,
+      [&](int k, std::size_t begin, std::size_t end) { body(k, first + begin, first + end); });
+  };
 
   // 1. Half edges per smaller vertex, counted by each half of the tets.
   splitAt(twoThreads,
@@ -83,107 +91,162 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
   start_.assign(nv + 1, 0);
   for (std::size_t v = 0; v < nv; ++v)
     start_[v + 1] = start_[v] + half_[0].count[v + 1] + half_[1].count[v + 1];
-  const std::size_t halfEdges = static_cast<std::size_t>(start_[nv]);
-  resizeWithRoom(halfTarget_, halfEdges);
-  resizeWithRoom(halfTet_, halfEdges);
-  resizeWithRoom(lowBits_, halfEdges);
 
-  // 2. To their blocks, in tet order: within a block, the first half's tets' edges first.
+  // Steps 2-4 per chunk of whole blocks of vertices, each chunk's half edges at most
+  // chunkHalfEdges (unless one block has more), so that the scratch arrays hold one chunk: all
+  // of them at once were 70 MB of fandisk at h = 0.0103 (6.8M half edges), the refinement's
+  // peak. The unique edges of each chunk go to uniqueTarget_ / uniqueTet_, vertex by vertex.
   const std::size_t blocks = (nv >> kBlockShift) + 1;
   auto blockStart = [&](std::size_t b) { return start_[std::min(nv, b << kBlockShift)]; };
   half_[0].fill.resize(blocks);
   half_[1].fill.resize(blocks);
-  for (std::size_t b = 0; b < blocks; ++b)
-  {
-    std::int32_t firstHalf = 0;
-    const std::size_t v1 = std::min(nv, (b + 1) << kBlockShift);
-    for (std::size_t v = b << kBlockShift; v < v1; ++v)
-      firstHalf += half_[0].count[v + 1];
-    half_[0].fill[b] = blockStart(b);
-    half_[1].fill[b] = blockStart(b) + firstHalf;
-  }
-  splitAt(twoThreads,
-    tetMiddle,
-    capacity,
-    [&](int k, TetId first, TetId last)
-    {
-      std::vector<std::int32_t>& fill = half_[k].fill;
-      forEdgesOf(first,
-        last,
-        [&](TetId t, VertexId a, VertexId b)
-        {
-          const VertexId lo = std::min(a, b);
-          const std::int32_t at = fill[static_cast<std::size_t>(lo >> kBlockShift)]++;
-          halfTarget_[static_cast<std::size_t>(at)] = std::max(a, b);
-          halfTet_[static_cast<std::size_t>(at)] = t;
-          lowBits_[static_cast<std::size_t>(at)] = static_cast<std::uint16_t>(lo & kBlockMask);
-        });
-    });
-
-  // 3. Within each block to their vertex, keeping the order (halves of the blocks).
-  std::vector<std::int32_t> blockStarts(blocks + 1);
-  for (std::size_t b = 0; b <= blocks; ++b)
-    blockStarts[b] = blockStart(b);
-  const std::size_t blockMiddle = halfWay(blockStarts, blocks);
-  splitAt(twoThreads,
-    blockMiddle,
-    blocks,
-    [&](int k, std::size_t firstBlock, std::size_t lastBlock)
-    {
-      Half& me = half_[k];
-      for (std::size_t b = firstBlock; b < lastBlock; ++b)
-      {
-        const std::int32_t first = blockStart(b), last = blockStart(b + 1);
-        me.blockTarget.assign(halfTarget_.begin() + first, halfTarget_.begin() + last);
-        me.blockTet.assign(halfTet_.begin() + first, halfTet_.begin() + last);
-        const std::size_t v0 = b << kBlockShift;
-        const std::size_t v1 = std::min(nv, v0 + (std::size_t{ 1 } << kBlockShift));
-        me.vertexFill.assign(start_.begin() + static_cast<std::ptrdiff_t>(v0),
-          start_.begin() + static_cast<std::ptrdiff_t>(v1));
-        for (std::int32_t j = 0; j < last - first; ++j)
-        {
-          const std::int32_t at = me.vertexFill[lowBits_[static_cast<std::size_t>(first + j)]]++;
-          halfTarget_[static_cast<std::size_t>(at)] = me.blockTarget[static_cast<std::size_t>(j)];
-          halfTet_[static_cast<std::size_t>(at)] = me.blockTet[static_cast<std::size_t>(j)];
-        }
-      }
-    });
-
-  // 4. Unique half edges (the first of each), kept at the front of their vertex's list and
-  // counted: per vertex its larger neighbours (unique_), and per half of the vertices its
-  // smaller ones (incoming; the halves' stamps and counts are their own).
-  const std::size_t vertexMiddle = halfWay(start_, nv);
+  half_[0].stamp.assign(nv, -1);
+  half_[1].stamp.assign(nv, -1);
   unique_.assign(nv, 0);
+  uniqueStart_.assign(nv + 1, 0);
+  uniqueTarget_.clear();
+  uniqueTet_.clear();
+  const std::size_t chunkLimit = std::max<std::size_t>(chunkHalfEdges, 1);
+  for (std::size_t firstBlock = 0; firstBlock < blocks;)
+  {
+    std::size_t lastBlock = firstBlock + 1;
+    while (lastBlock < blocks &&
+      static_cast<std::size_t>(blockStart(lastBlock + 1) - blockStart(firstBlock)) <= chunkLimit)
+      ++lastBlock;
+    const std::size_t v0 = std::min(nv, firstBlock << kBlockShift);
+    const std::size_t v1 = std::min(nv, lastBlock << kBlockShift);
+    const std::int32_t base = blockStart(firstBlock);
+    const std::size_t chunkEdges = static_cast<std::size_t>(blockStart(lastBlock) - base);
+    resizeWithRoom(halfTarget_, chunkEdges);
+    resizeWithRoom(halfTet_, chunkEdges);
+    resizeWithRoom(lowBits_, chunkEdges);
+
+    // 2. The chunk's half edges to their blocks, in tet order: within a block, the first
+    // half's tets' edges first.
+    for (std::size_t b = firstBlock; b < lastBlock; ++b)
+    {
+      std::int32_t firstHalf = 0;
+      const std::size_t end = std::min(nv, (b + 1) << kBlockShift);
+      for (std::size_t v = b << kBlockShift; v < end; ++v)
+        firstHalf += half_[0].count[v + 1];
+      half_[0].fill[b] = blockStart(b) - base;
+      half_[1].fill[b] = blockStart(b) - base + firstHalf;
+    }
+    splitAt(twoThreads,
+      tetMiddle,
+      capacity,
+      [&](int k, TetId first, TetId last)
+      {
+        std::vector<std::int32_t>& fill = half_[k].fill;
+        forEdgesOf(first,
+          last,
+          [&](TetId t, VertexId a, VertexId b)
+          {
+            const VertexId lo = std::min(a, b);
+            if (static_cast<std::size_t>(lo) < v0 || static_cast<std::size_t>(lo) >= v1)
+              return;
+            const std::int32_t at = fill[static_cast<std::size_t>(lo >> kBlockShift)]++;
+            halfTarget_[static_cast<std::size_t>(at)] = std::max(a, b);
+            halfTet_[static_cast<std::size_t>(at)] = t;
+            lowBits_[static_cast<std::size_t>(at)] = static_cast<std::uint16_t>(lo & kBlockMask);
+          });
+      });
+
+    // 3. Within each block to their vertex, keeping the order (halves of the blocks).
+    std::vector<std::int32_t> blockStarts(lastBlock - firstBlock + 1);
+    for (std::size_t b = firstBlock; b <= lastBlock; ++b)
+      blockStarts[b - firstBlock] = blockStart(b) - base;
+    const std::size_t blockMiddle = firstBlock + halfWay(blockStarts, lastBlock - firstBlock);
+    splitRange(firstBlock,
+      blockMiddle,
+      lastBlock,
+      [&](int k, std::size_t fromBlock, std::size_t toBlock)
+      {
+        Half& me = half_[k];
+        for (std::size_t b = fromBlock; b < toBlock; ++b)
+        {
+          const std::int32_t first = blockStart(b) - base, last = blockStart(b + 1) - base;
+          me.blockTarget.assign(halfTarget_.begin() + first, halfTarget_.begin() + last);
+          me.blockTet.assign(halfTet_.begin() + first, halfTet_.begin() + last);
+          const std::size_t w0 = b << kBlockShift;
+          const std::size_t w1 = std::min(nv, w0 + (std::size_t{ 1 } << kBlockShift));
+          me.vertexFill.resize(w1 - w0);
+          for (std::size_t v = w0; v < w1; ++v)
+            me.vertexFill[v - w0] = start_[v] - base;
+          for (std::int32_t j = 0; j < last - first; ++j)
+          {
+            const std::int32_t at = me.vertexFill[lowBits_[static_cast<std::size_t>(first + j)]]++;
+            halfTarget_[static_cast<std::size_t>(at)] = me.blockTarget[static_cast<std::size_t>(j)];
+            halfTet_[static_cast<std::size_t>(at)] = me.blockTet[static_cast<std::size_t>(j)];
+          }
+        }
+      });
+
+    // 4. Unique half edges (the first of each) to the front of their vertex's list, counted
+    // (halves of the chunk's vertices, by their half edges; each half its own stamps).
+    const std::size_t vertexMiddle =
+      static_cast<std::size_t>(std::lower_bound(start_.begin() + static_cast<std::ptrdiff_t>(v0),
+                                 start_.begin() + static_cast<std::ptrdiff_t>(v1),
+                                 base + static_cast<std::int32_t>(chunkEdges / 2)) -
+        start_.begin());
+    splitRange(v0,
+      vertexMiddle,
+      v1,
+      [&](int k, std::size_t firstVertex, std::size_t lastVertex)
+      {
+        std::vector<VertexId>& stamp = half_[k].stamp;
+        for (std::size_t a = firstVertex; a < lastVertex; ++a)
+        {
+          std::int32_t out = start_[a] - base;
+          for (std::int32_t j = start_[a] - base; j < start_[a + 1] - base; ++j)
+          {
+            const VertexId b = halfTarget_[static_cast<std::size_t>(j)];
+            if (stamp[static_cast<std::size_t>(b)] == static_cast<VertexId>(a))
+              continue;
+            stamp[static_cast<std::size_t>(b)] = static_cast<VertexId>(a);
+            halfTarget_[static_cast<std::size_t>(out)] = b;
+            halfTet_[static_cast<std::size_t>(out++)] = halfTet_[static_cast<std::size_t>(j)];
+            ++unique_[a];
+          }
+        }
+      });
+    for (std::size_t a = v0; a < v1; ++a)
+      uniqueStart_[a + 1] = uniqueStart_[a] + unique_[a];
+    uniqueTarget_.resize(static_cast<std::size_t>(uniqueStart_[v1]));
+    uniqueTet_.resize(uniqueTarget_.size());
+    splitRange(v0,
+      vertexMiddle,
+      v1,
+      [&](int, std::size_t firstVertex, std::size_t lastVertex)
+      {
+        for (std::size_t a = firstVertex; a < lastVertex; ++a)
+        {
+          const std::size_t from = static_cast<std::size_t>(start_[a] - base);
+          std::copy_n(halfTarget_.begin() + static_cast<std::ptrdiff_t>(from),
+            unique_[a],
+            uniqueTarget_.begin() + uniqueStart_[a]);
+          std::copy_n(halfTet_.begin() + static_cast<std::ptrdiff_t>(from),
+            unique_[a],
+            uniqueTet_.begin() + uniqueStart_[a]);
+        }
+      });
+    firstBlock = lastBlock;
+  }
+
+  // 5. The lists: v's smaller neighbours (those of the first half's vertices, then the
+  // second's, each in increasing order), then its larger ones. Per half of the vertices, the
+  // count of its edges into each vertex (incoming), then the lists.
+  const std::size_t vertexMiddle = halfWay(start_, nv);
   splitAt(twoThreads,
     vertexMiddle,
     nv,
     [&](int k, std::size_t firstVertex, std::size_t lastVertex)
     {
-      Half& me = half_[k];
-      me.stamp.assign(nv, -1);
-      me.incoming.assign(nv, 0);
-      for (std::size_t a = firstVertex; a < lastVertex; ++a)
-      {
-        std::int32_t out = start_[a];
-        for (std::int32_t j = start_[a]; j < start_[a + 1]; ++j)
-        {
-          const VertexId b = halfTarget_[static_cast<std::size_t>(j)];
-          if (me.stamp[static_cast<std::size_t>(b)] == static_cast<VertexId>(a))
-            continue;
-          me.stamp[static_cast<std::size_t>(b)] = static_cast<VertexId>(a);
-          halfTarget_[static_cast<std::size_t>(out)] = b;
-          halfTet_[static_cast<std::size_t>(out++)] = halfTet_[static_cast<std::size_t>(j)];
-          ++unique_[a];
-          ++me.incoming[static_cast<std::size_t>(b)];
-        }
-        // Entries [out, start_[a + 1]) are duplicates: mark the end of the unique ones.
-        if (out < start_[a + 1])
-          halfTarget_[static_cast<std::size_t>(out)] = -1;
-      }
+      std::vector<std::int32_t>& incoming = half_[k].incoming;
+      incoming.assign(nv, 0);
+      for (std::int32_t j = uniqueStart_[firstVertex]; j < uniqueStart_[lastVertex]; ++j)
+        ++incoming[static_cast<std::size_t>(uniqueTarget_[static_cast<std::size_t>(j)])];
     });
-
-  // 5. The lists: v's smaller neighbours (those of the first half's vertices, then the
-  // second's, each in increasing order), then its larger ones.
   offsets.assign(nv + 1, 0);
   for (std::size_t v = 0; v < nv; ++v)
     offsets[v + 1] = offsets[v] + half_[0].incoming[v] + half_[1].incoming[v] + unique_[v];
@@ -201,12 +264,10 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
       for (std::size_t a = firstVertex; a < lastVertex; ++a)
       {
         std::int32_t own = offsets[a] + half_[0].incoming[a] + half_[1].incoming[a];
-        for (std::int32_t j = start_[a];
-             j < start_[a + 1] && halfTarget_[static_cast<std::size_t>(j)] >= 0;
-             ++j)
+        for (std::int32_t j = uniqueStart_[a]; j < uniqueStart_[a + 1]; ++j)
         {
-          const VertexId b = halfTarget_[static_cast<std::size_t>(j)];
-          const TetId t = halfTet_[static_cast<std::size_t>(j)];
+          const VertexId b = uniqueTarget_[static_cast<std::size_t>(j)];
+          const TetId t = uniqueTet_[static_cast<std::size_t>(j)];
           const std::int32_t at = me.cursor[static_cast<std::size_t>(b)]++;
           targets[static_cast<std::size_t>(at)] = static_cast<VertexId>(a);
           tetOf[static_cast<std::size_t>(at)] = t;

@@ -1,8 +1,8 @@
 // The unique edges of a mesh's live tets as a symmetric CSR adjacency, each entry with a tet
 // that has the edge: the refinement's edge splitting and size gradation walk it after every
-// round. Linear time: half edges are bucketed by their smaller vertex (counting sort), duplicates
-// dropped with a stamp per vertex. Large meshes are built in two halves side by side (tets, then
-// vertex ranges); the arrays are the same either way.
+// round. Linear time: half edges are bucketed by their smaller vertex (counting sort, a chunk of
+// vertices at a time), duplicates dropped with a stamp per vertex. Large meshes are built in two
+// halves side by side (tets, then vertex ranges); the arrays are the same either way.
 #pragma once
 
 #include "TetMesh.h"
@@ -28,6 +28,10 @@ public:
   std::vector<VertexId> targets;
   std::vector<TetId> tetOf;
 
+  // The half edges (6 per tet) are sorted in chunks of vertices with at most this many: the
+  // scratch holds one chunk (10 bytes per half edge). The arrays do not depend on it.
+  std::size_t chunkHalfEdges = std::size_t{ 1 } << 21;
+
 private:
   // Scratch of one half of the work.
   struct Half
@@ -38,9 +42,13 @@ private:
     std::vector<std::int32_t> vertexFill;
   };
   std::vector<std::int32_t> start_, unique_;
-  std::vector<VertexId> halfTarget_;
+  std::vector<VertexId> halfTarget_; // a chunk's half edges
   std::vector<TetId> halfTet_;
   std::vector<std::uint16_t> lowBits_; // a half edge's smaller vertex within its block
+  // Every vertex's unique larger neighbours and their tets, from uniqueStart_[v].
+  std::vector<std::int32_t> uniqueStart_;
+  std::vector<VertexId> uniqueTarget_;
+  std::vector<TetId> uniqueTet_;
   Half half_[2];
 };
 

@@ -102,3 +102,23 @@ TEST(EdgeGraph, HalvesGiveTheSameArraysAsOneThread)
     EXPECT_EQ(two.tetOf, one.tetOf);
   }
 }
+
+TEST(EdgeGraph, ChunksGiveTheSameArrays)
+{
+  // Chunks far smaller than the mesh (some of a single block of 1024 vertices), on one thread
+  // and on two, against one chunk for everything.
+  const TetMesh mesh = meshWithHoles(20000);
+  EdgeGraph whole, chunked;
+  whole.chunkHalfEdges = std::size_t{ 1 } << 30;
+  whole.build(mesh, false);
+  expectGraphOf(mesh, whole);
+  for (std::size_t chunk : { std::size_t{ 1 }, std::size_t{ 5000 }, std::size_t{ 40000 } })
+    for (bool twoThreads : { false, true })
+    {
+      chunked.chunkHalfEdges = chunk;
+      chunked.build(mesh, twoThreads);
+      EXPECT_EQ(chunked.offsets, whole.offsets) << chunk << " " << twoThreads;
+      EXPECT_EQ(chunked.targets, whole.targets) << chunk << " " << twoThreads;
+      EXPECT_EQ(chunked.tetOf, whole.tetOf) << chunk << " " << twoThreads;
+    }
+}
