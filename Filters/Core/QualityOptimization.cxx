@@ -42,6 +42,7 @@ public:
   {
     main_.ctx = &ctx_;
     main_.edgeFailed = &edgeFailed_;
+    main_.tetFailed = &tetFailed_;
     main_.reportsProgress = true;
   }
   // Starts from the quality cache of `previous`, which ran on the same mesh (and whose
@@ -49,17 +50,15 @@ public:
   void continueFrom(Optimizer& previous)
   {
     ctx_.adoptCache(previous.ctx_);
-    // The previous stage's per-tet failure memos, emptied (a stamp of 0 is "never failed",
-    // as in new arrays): their pages are in use already, where new arrays would be fresh
-    // memory, slow to fault in on these machines, and both stages' would coexist (fandisk at
-    // h = 0.0103: 56 MB).
-    takeEmptied(tetFailed_, previous.tetFailed_);
-    takeEmptied(tetFailedVerts_, previous.tetFailedVerts_);
-    takeEmptied(insertFailed_, previous.insertFailed_);
-    takeEmptied(insertFailedVerts_, previous.insertFailedVerts_);
+    // The previous stage's memos, emptied: their slots are in use already.
     edgeFailed_ = std::move(previous.edgeFailed_);
     edgeFailed_.clear();
     main_.edgeFailed = &edgeFailed_;
+    tetFailed_ = std::move(previous.tetFailed_);
+    tetFailed_.clear();
+    main_.tetFailed = &tetFailed_;
+    insertFailed_ = std::move(previous.insertFailed_);
+    insertFailed_.clear();
   }
 
   OptimizationResult run(const std::function<bool(double)>& progress);
@@ -79,14 +78,25 @@ public:
 private:
   using BadList = std::vector<std::pair<double, TetId>>; // (score, tet), worst first
   using EdgeMemo = EpochHashTable<std::uint64_t, std::uint64_t, MixHash64>;
+  // When the search at a tet slot last failed (the clock), and the tet then: the slot may
+  // hold another tet since.
+  struct TetFailure
+  {
+    std::uint64_t clock = 0;
+    TetVertices verts{};
+  };
+  using TetMemo = EpochHashTable<std::uint64_t, TetFailure, MixHash64>;
   // What one piece of a pass works with: the whole mesh on this thread, or one half of space
-  // on a thread of its own (passInHalves). The memo arrays of the Optimizer are shared: a
-  // half reads and writes only the entries of its own vertices and tets, and its clock
-  // starts from the whole's and gives it back, so that every stamp stays comparable.
+  // on a thread of its own (passInHalves). The Optimizer's per-vertex memo arrays are
+  // shared: a half reads and writes only the entries of its own vertices, and its clock
+  // starts from the whole's and gives it back, so that every stamp stays comparable. The
+  // edge and tet memos are per half (the first half's are the whole's).
   struct Worker
   {
     Context* ctx = nullptr;
     EdgeMemo* edgeFailed = nullptr;
+    TetMemo* tetFailed = nullptr;
+    std::vector<TetId> tetFailedWrites; // the tets this worker wrote to its tet memo
     std::uint64_t clock = 1;
     std::vector<TetId> star;
     TetSlotPool* pool = nullptr;  // a half's tet slots; null: the mesh's free list
@@ -162,12 +172,13 @@ private:
     for (TetId t : tets)
       touch(w, t);
   }
-  template<typename T>
-  static void takeEmptied(std::vector<T>& mine, std::vector<T>& theirs)
+  // Whether the search at t failed before, on these vertices, none of them changed since.
+  bool failedBefore(const TetMemo& memo, TetId t, const TetVertices& tv) const
   {
-    mine.swap(theirs);
-    std::fill(mine.begin(), mine.end(), T{});
-    theirs.clear();
+    const TetFailure* f = memo.find(static_cast<std::uint64_t>(t));
+    return f && f->verts == tv && unchangedSince(tv[0], f->clock) &&
+      unchangedSince(tv[1], f->clock) && unchangedSince(tv[2], f->clock) &&
+      unchangedSince(tv[3], f->clock);
   }
   bool unchangedSince(VertexId v, std::uint64_t stamp) const
   {
@@ -198,10 +209,14 @@ private:
   static constexpr int kInsertionSearchesPerVertex = 1;
   // Memo of failures (a failed search is not repeated on an unchanged neighbourhood; the
   // floors only rise, so it would fail again): changed_[v] is the clock of the last change
-  // of a tet incident to v, smoothFailed_[v] when smoothing v last failed, tetFailed_[t]
-  // when no topological move was found for tet t (with the vertices tetFailedVerts_[t]).
-  std::vector<std::uint64_t> changed_, smoothFailed_, tetFailed_, insertFailed_;
-  std::vector<TetVertices> tetFailedVerts_, insertFailedVerts_;
+  // of a tet incident to v, smoothFailed_[v] when smoothing v last failed, tetFailed_ when
+  // no topological move was found for a tet, insertFailed_ no vertex insertion. Hash tables:
+  // few tets are ever searched (fandisk at h = 0.0103: arrays over every tet slot were 56 MB,
+  // the optimiser's peak). The second half of space works on a copy of the tet memo, and
+  // what it wrote goes back to the whole's: as one memo, so that the work, which the work
+  // bound counts, is the same.
+  std::vector<std::uint64_t> changed_, smoothFailed_;
+  TetMemo tetFailed_, tetFailedSecondHalf_, insertFailed_;
   // The clock when the removal of an edge (edgeKey) last failed. The removal depends only
   // on the edge's shell, which every tet of the edge shares: without the memo an edge was
   // searched once per bad tet around it (gear.vtp at h = 0.127: 87% of the tets are bad).
@@ -389,22 +404,13 @@ bool Optimizer::insertVertex(Worker& w, TetId t, std::vector<TetId>& created)
   if (!insertionLeft())
     return false;
   const TetVertices tv = ctx_.verts(t);
-  const std::size_t ti = static_cast<std::size_t>(t);
-  if (ti < insertFailed_.size() && insertFailedVerts_[ti] == tv &&
-    unchangedSince(tv[0], insertFailed_[ti]) && unchangedSince(tv[1], insertFailed_[ti]) &&
-    unchangedSince(tv[2], insertFailed_[ti]) && unchangedSince(tv[3], insertFailed_[ti]))
+  if (failedBefore(insertFailed_, t, tv))
     return false;
   LocalMove mv;
   ++insertionSearches_;
   if (!findVertexInsertion(ctx_, t, mv))
   {
-    if (ti >= insertFailed_.size())
-    {
-      insertFailed_.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()), 0);
-      insertFailedVerts_.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()));
-    }
-    insertFailed_[ti] = w.clock;
-    insertFailedVerts_[ti] = tv;
+    insertFailed_.assign(static_cast<std::uint64_t>(t), { w.clock, tv });
     return false;
   }
   ctx_.fixed.resize(static_cast<std::size_t>(ctx_.mesh.vertexCount()), 0);
@@ -422,10 +428,7 @@ bool Optimizer::improveTet(Worker& w, TetId t, std::vector<TetId>& created)
 {
   Context& ctx = *w.ctx;
   const TetVertices tv = ctx.verts(t);
-  const std::size_t ti = static_cast<std::size_t>(t);
-  if (ti < tetFailed_.size() && tetFailedVerts_[ti] == tv &&
-    unchangedSince(tv[0], tetFailed_[ti]) && unchangedSince(tv[1], tetFailed_[ti]) &&
-    unchangedSince(tv[2], tetFailed_[ti]) && unchangedSince(tv[3], tetFailed_[ti]))
+  if (failedBefore(*w.tetFailed, t, tv))
     return insertionPass_ && insertVertex(w, t, created); // nothing changed since it failed
   LocalMove best, cand;
   bool found = false;
@@ -468,13 +471,9 @@ bool Optimizer::improveTet(Worker& w, TetId t, std::vector<TetId>& created)
   {
     if (restricted)
       return false;
-    if (ti >= tetFailed_.size())
-    {
-      tetFailed_.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()), 0);
-      tetFailedVerts_.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()));
-    }
-    tetFailed_[ti] = w.clock;
-    tetFailedVerts_[ti] = tv;
+    w.tetFailed->assign(static_cast<std::uint64_t>(t), { w.clock, tv });
+    if (w.tetFailed != &tetFailed_)
+      w.tetFailedWrites.push_back(t);
     return insertionPass_ && insertVertex(w, t, created);
   }
   return apply(w, best, created);
@@ -600,8 +599,6 @@ void Optimizer::sizeForHalves()
   if (ctx_.rm.region.size() < nt)
     ctx_.rm.region.resize(nt, 0);
   queued_.resize(nt, 0);
-  tetFailed_.resize(nt, 0);
-  tetFailedVerts_.resize(nt);
   if (changed_.size() < nv)
   {
     changed_.resize(nv, 1);
@@ -675,8 +672,10 @@ void Optimizer::passInHalves(BadList& bad, bool swept)
   };
   auto runHalves = [&](const std::function<void(Worker&, int)>& work)
   {
-    // Side 0 uses the whole's index (this thread does not meanwhile), side 1 a copy.
+    // Side 0 uses the whole's index and tet memo (this thread does not meanwhile), side 1
+    // copies.
     secondIndex.copyEntries(ctx_.index);
+    tetFailedSecondHalf_ = tetFailed_;
     Context view0(ctx_, ctx_.index, vertexSide_, 0), view1(ctx_, secondIndex, vertexSide_, 1);
     Context* views[2] = { &view0, &view1 };
     budgetLeft =
@@ -687,6 +686,7 @@ void Optimizer::passInHalves(BadList& bad, bool swept)
       w = Worker();
       w.ctx = views[s];
       w.edgeFailed = s == 0 ? &edgeFailed_ : &edgeFailedSecondHalf_;
+      w.tetFailed = s == 0 ? &tetFailed_ : &tetFailedSecondHalf_;
       w.clock = main_.clock;
       w.reportsProgress = s == 0; // this thread's
       w.moveBudget = shareOf(own[s].size());
@@ -695,6 +695,9 @@ void Optimizer::passInHalves(BadList& bad, bool swept)
     // Back to the whole: side 1's index entries, the clock past both, the counters.
     ctx_.index.takeEntries(
       secondIndex, [&](VertexId v) { return vertexSide_[static_cast<std::size_t>(v)] == 1; });
+    for (TetId t : sides[1].tetFailedWrites)
+      tetFailed_.assign(
+        static_cast<std::uint64_t>(t), *tetFailedSecondHalf_.find(static_cast<std::uint64_t>(t)));
     main_.clock = std::max(sides[0].clock, sides[1].clock) + 1;
     for (const Worker& w : sides)
     {
