@@ -20,9 +20,8 @@ constexpr VertexId kBlockMask = (1 << kBlockShift) - 1;
 // Below this many tet slots one thread builds it all (a second one costs more than it saves).
 constexpr TetId kMinTetsForHalves = 65536;
 
-// The graph is rebuilt after each refinement round on a slightly larger mesh: a quarter more
-// room than asked for, so that the next build neither copies the arrays nor faults in fresh
-// pages. The contents are not kept (every build overwrites them).
+// The chunks' scratch: a quarter more room than asked for, so that the next chunks (of about
+// as many half edges) fit without a copy or fresh pages. The contents are not kept.
 template<typename T>
 void resizeWithRoom(std::vector<T>& v, std::size_t n)
 {
@@ -33,6 +32,12 @@ void resizeWithRoom(std::vector<T>& v, std::size_t n)
     v.swap(larger);
   }
   v.resize(n);
+}
+
+template<typename T>
+void release(std::vector<T>& v)
+{
+  std::vector<T>().swap(v);
 }
 
 // The index in [0, n] that splits the increasing prefix sums `start` (n + 1 entries) nearest
@@ -52,6 +57,10 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
   const std::size_t nv = static_cast<std::size_t>(mesh.vertexCount());
   const TetId capacity = mesh.tetCapacity();
   twoThreads = twoThreads && capacity >= kMinTetsForHalves;
+  // The lists are rebuilt from scratch: the last build's go now, so that they and the sorting
+  // scratch are never held at once (the scratch goes before the lists are made).
+  release(targets);
+  release(tetOf);
   // Halves of the tets for the first two steps; of the blocks and of the vertices (by their
   // half edges) for the others.
   const TetId tetMiddle = capacity / 2;
@@ -233,6 +242,10 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
     firstBlock = lastBlock;
   }
 
+  release(halfTarget_);
+  release(halfTet_);
+  release(lowBits_);
+
   // 5. The lists: v's smaller neighbours (those of the first half's vertices, then the
   // second's, each in increasing order), then its larger ones. Per half of the vertices, the
   // count of its edges into each vertex (incoming), then the lists.
@@ -250,8 +263,8 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
   offsets.assign(nv + 1, 0);
   for (std::size_t v = 0; v < nv; ++v)
     offsets[v + 1] = offsets[v] + half_[0].incoming[v] + half_[1].incoming[v] + unique_[v];
-  resizeWithRoom(targets, static_cast<std::size_t>(offsets[nv]));
-  resizeWithRoom(tetOf, targets.size());
+  targets.resize(static_cast<std::size_t>(offsets[nv]));
+  tetOf.resize(targets.size());
   splitAt(twoThreads,
     vertexMiddle,
     nv,
