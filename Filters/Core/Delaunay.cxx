@@ -996,7 +996,7 @@ void openSlotRanges(TetMesh& mesh, Side* side, std::size_t slots0, std::size_t s
 // Closes the sides' ranges: side 1's tets move down to follow side 0's last one (no gap of
 // unused slots is left in the arrays), side 1's unused end is cut off, and the freed slots go
 // to the free list. Every neighbour reference into the moved block is moved with it.
-TetRelocation closeSlotRanges(TetMesh& mesh, Side* side)
+TetRelocation closeSlotRanges(TetMesh& mesh, Side* side, bool twoThreads)
 {
   TetRelocation moved;
   moved.from = side[0].pool.end;
@@ -1007,34 +1007,45 @@ TetRelocation closeSlotRanges(TetMesh& mesh, Side* side)
   const TetId end = sideOneUsed ? moved.to - moved.shift : side[0].pool.next;
   if (moved.shift > 0 && sideOneUsed)
   {
-    for (TetId t = moved.from; t < moved.to; ++t)
-    {
-      const std::size_t from = 4 * static_cast<std::size_t>(t);
-      const std::size_t to = 4 * static_cast<std::size_t>(t - moved.shift);
-      for (int k = 0; k < 4; ++k)
-      {
-        mesh.tets[to + k] = mesh.tets[from + k];
-        mesh.neighbors[to + k] = mesh.neighbors[from + k];
-      }
-      mesh.flags[t - moved.shift] = mesh.flags[t];
-    }
+    // Down, so a forward copy (memmove) is right though the ranges overlap.
+    const std::size_t from = static_cast<std::size_t>(moved.from);
+    const std::size_t to = static_cast<std::size_t>(moved.to);
+    const std::size_t shift = static_cast<std::size_t>(moved.shift);
+    std::copy(mesh.tets.begin() + 4 * from,
+      mesh.tets.begin() + 4 * to,
+      mesh.tets.begin() + 4 * (from - shift));
+    std::copy(mesh.neighbors.begin() + 4 * from,
+      mesh.neighbors.begin() + 4 * to,
+      mesh.neighbors.begin() + 4 * (from - shift));
+    std::copy(
+      mesh.flags.begin() + from, mesh.flags.begin() + to, mesh.flags.begin() + (from - shift));
     // References between moved tets move by the shift; a tet outside the block gets its
     // reference back to the moved tet rewritten (freed slots' entries are stale: skipped).
-    for (TetId t = moved.from - moved.shift; t < end; ++t)
-    {
-      if (mesh.isDeleted(t))
-        continue;
-      for (int f = 0; f < 4; ++f)
+    // Each entry is written once, by the tet it belongs to or across its one face: the two
+    // halves of the block side by side.
+    const TetId first = moved.from - moved.shift;
+    constexpr TetId kMinHalves = 65536;
+    splitAt(twoThreads && end - first >= kMinHalves,
+      (end - first) / 2,
+      end - first,
+      [&](int, TetId begin, TetId stop)
       {
-        FaceRef& n = mesh.neighbors[4 * static_cast<std::size_t>(t) + f];
-        if (n == kNoNeighbor)
-          continue;
-        if (faceTet(n) >= moved.from && faceTet(n) < moved.to)
-          n -= 4 * moved.shift;
-        else
-          mesh.neighbors[static_cast<std::size_t>(n)] = makeFaceRef(t, f);
-      }
-    }
+        for (TetId t = first + begin; t < first + stop; ++t)
+        {
+          if (mesh.isDeleted(t))
+            continue;
+          for (int f = 0; f < 4; ++f)
+          {
+            FaceRef& n = mesh.neighbors[4 * static_cast<std::size_t>(t) + f];
+            if (n == kNoNeighbor)
+              continue;
+            if (faceTet(n) >= moved.from && faceTet(n) < moved.to)
+              n -= 4 * moved.shift;
+            else
+              mesh.neighbors[static_cast<std::size_t>(n)] = makeFaceRef(t, f);
+          }
+        }
+      });
     for (TetId& t : side[1].pool.freed)
       t = moved.map(t);
   }
@@ -1117,7 +1128,7 @@ void insertInHalves(TetMesh& mesh,
   };
   runPair(twoThreads, work);
 
-  const TetRelocation moved = closeSlotRanges(mesh, side);
+  const TetRelocation moved = closeSlotRanges(mesh, side, twoThreads);
   hint = moved.map(side[1].hint);
   for (int k = 0; k < 2; ++k)
     duplicates.insert(duplicates.end(), side[k].duplicates.begin(), side[k].duplicates.end());
@@ -1187,7 +1198,7 @@ TetRelocation MeshHalves::finish()
   if (!state_->open)
     return {};
   state_->open = false;
-  return closeSlotRanges(*state_->mesh, state_->halves.side);
+  return closeSlotRanges(*state_->mesh, state_->halves.side, wantTwoThreads(0));
 }
 
 InsertResult insertVertex(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspace& workspace)

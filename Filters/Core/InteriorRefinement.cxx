@@ -1031,8 +1031,10 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     // Side 1's tets moved down to close the gap of unused slots: their regions and the tet
     // ids held here move with them.
     const TetRelocation moved = phase.halves->finish();
-    for (TetId t = moved.from; t < moved.to; ++t)
-      region[static_cast<std::size_t>(t - moved.shift)] = region[static_cast<std::size_t>(t)];
+    if (moved.to > moved.from)
+      std::copy(region.begin() + moved.from,
+        region.begin() + moved.to,
+        region.begin() + (moved.from - moved.shift)); // down: forward is right
     region.resize(static_cast<std::size_t>(mesh.tetCapacity()), -1);
     if (moved.shift > 0)
     {
@@ -1045,14 +1047,23 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     const VertexId firstOne = phase.side[1].firstId;
     if (gap > 0 && phase.side[1].accepted > 0)
     {
-      for (TetId t = 0; t < mesh.tetCapacity(); ++t)
-        if (!mesh.isDeleted(t))
-          for (int i = 0; i < 4; ++i)
-          {
-            VertexId& w = mesh.tets[4 * static_cast<std::size_t>(t) + i];
-            if (w >= firstOne)
-              w -= gap;
-          }
+      // Every tet's own ids: the two halves of the slots side by side.
+      constexpr TetId kMinHalves = 65536;
+      const TetId slots = mesh.tetCapacity();
+      splitAt(slots >= kMinHalves && wantTwoThreads(0),
+        slots / 2,
+        slots,
+        [&](int, TetId begin, TetId end)
+        {
+          for (TetId t = begin; t < end; ++t)
+            if (!mesh.isDeleted(t))
+              for (int i = 0; i < 4; ++i)
+              {
+                VertexId& w = mesh.tets[4 * static_cast<std::size_t>(t) + i];
+                if (w >= firstOne)
+                  w -= gap;
+              }
+        });
       for (VertexId v = firstOne; v < firstOne + phase.side[1].accepted; ++v)
       {
         std::copy(&mesh.coords[3 * static_cast<std::size_t>(v)],
