@@ -56,6 +56,32 @@ TEST(VolumeMesher, CubeWithConstantSizeKeepsTheBoundaryAndFollowsH)
     v.interiorPoints,
     before,
     minQuality(v, v.tets));
+
+  // The Q values before optimisation are those of the mesh the refinement left: the same run
+  // without optimisation ends with that mesh (the smoothing moves points, so its tets measured
+  // on the optimised points would give other values).
+  options.optimize = false;
+  const VolumeMeshResult plain =
+    meshVolume(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), options);
+  ASSERT_TRUE(plain.ok) << plain.error;
+  std::vector<double> expected;
+  for (std::size_t t = 0; t < plain.tets.size() / 4; ++t)
+  {
+    const double* p[4];
+    for (int i = 0; i < 4; ++i)
+      p[i] =
+        &plain
+           .points[3 * static_cast<std::size_t>(plain.tets[4 * t + static_cast<std::size_t>(i)])];
+    expected.push_back(measureTet(p[1], p[0], p[2], p[3]).quality);
+  }
+  std::vector<double> got = v.qualityBeforeOptimization;
+  std::sort(expected.begin(), expected.end());
+  std::sort(got.begin(), got.end());
+  EXPECT_EQ(got, expected);
+  EXPECT_EQ(static_cast<int>(got.size()), v.optimizationStats.tetsBefore);
+  std::vector<double> plainBefore = plain.qualityBeforeOptimization;
+  std::sort(plainBefore.begin(), plainBefore.end());
+  EXPECT_EQ(plainBefore, expected);
 }
 
 // Issue 8's targets on good surface triangles, with the default options: Q min >= 0.3, share
