@@ -29,7 +29,10 @@ std::vector<double> liveTetQualities(const TetMesh& mesh)
 {
   constexpr TetId kMinHalves = 32768;
   const TetId capacity = mesh.tetCapacity();
+  // Reserved, not touched: the first half's vector takes the second's values without a copy.
   std::vector<double> half[2];
+  half[0].reserve(static_cast<std::size_t>(capacity));
+  half[1].reserve(static_cast<std::size_t>(capacity - capacity / 2));
   splitAt(capacity >= kMinHalves && wantTwoThreads(0),
     capacity / 2,
     capacity,
