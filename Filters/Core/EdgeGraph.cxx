@@ -104,7 +104,7 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
   // Steps 2-4 per chunk of whole blocks of vertices, each chunk's half edges at most
   // chunkHalfEdges (unless one block has more), so that the scratch arrays hold one chunk: all
   // of them at once were 70 MB of fandisk at h = 0.0103 (6.8M half edges), the refinement's
-  // peak. The unique edges of each chunk go to uniqueTarget_ / uniqueTet_, vertex by vertex.
+  // peak. The unique edges of each chunk go to uniqueTarget / uniqueTet, vertex by vertex.
   const std::size_t blocks = (nv >> kBlockShift) + 1;
   auto blockStart = [&](std::size_t b) { return start_[std::min(nv, b << kBlockShift)]; };
   half_[0].fill.resize(blocks);
@@ -112,9 +112,14 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
   half_[0].stamp.assign(nv, -1);
   half_[1].stamp.assign(nv, -1);
   unique_.assign(nv, 0);
-  uniqueStart_.assign(nv + 1, 0);
-  uniqueTarget_.clear();
-  uniqueTet_.clear();
+  // A chunk's half edges, and their smaller vertex within its block.
+  std::vector<VertexId> halfTarget;
+  std::vector<TetId> halfTet;
+  std::vector<std::uint16_t> lowBits;
+  // Every vertex's unique larger neighbours and their tets, from uniqueStart[v].
+  std::vector<std::int32_t> uniqueStart(nv + 1, 0);
+  std::vector<VertexId> uniqueTarget;
+  std::vector<TetId> uniqueTet;
   const std::size_t chunkLimit = std::max<std::size_t>(chunkHalfEdges, 1);
   for (std::size_t firstBlock = 0; firstBlock < blocks;)
   {
@@ -126,9 +131,9 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
     const std::size_t v1 = std::min(nv, lastBlock << kBlockShift);
     const std::int32_t base = blockStart(firstBlock);
     const std::size_t chunkEdges = static_cast<std::size_t>(blockStart(lastBlock) - base);
-    resizeWithRoom(halfTarget_, chunkEdges);
-    resizeWithRoom(halfTet_, chunkEdges);
-    resizeWithRoom(lowBits_, chunkEdges);
+    resizeWithRoom(halfTarget, chunkEdges);
+    resizeWithRoom(halfTet, chunkEdges);
+    resizeWithRoom(lowBits, chunkEdges);
 
     // 2. The chunk's half edges to their blocks, in tet order: within a block, the first
     // half's tets' edges first.
@@ -155,9 +160,9 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
             if (static_cast<std::size_t>(lo) < v0 || static_cast<std::size_t>(lo) >= v1)
               return;
             const std::int32_t at = fill[static_cast<std::size_t>(lo >> kBlockShift)]++;
-            halfTarget_[static_cast<std::size_t>(at)] = std::max(a, b);
-            halfTet_[static_cast<std::size_t>(at)] = t;
-            lowBits_[static_cast<std::size_t>(at)] = static_cast<std::uint16_t>(lo & kBlockMask);
+            halfTarget[static_cast<std::size_t>(at)] = std::max(a, b);
+            halfTet[static_cast<std::size_t>(at)] = t;
+            lowBits[static_cast<std::size_t>(at)] = static_cast<std::uint16_t>(lo & kBlockMask);
           });
       });
 
@@ -175,8 +180,8 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
         for (std::size_t b = fromBlock; b < toBlock; ++b)
         {
           const std::int32_t first = blockStart(b) - base, last = blockStart(b + 1) - base;
-          me.blockTarget.assign(halfTarget_.begin() + first, halfTarget_.begin() + last);
-          me.blockTet.assign(halfTet_.begin() + first, halfTet_.begin() + last);
+          me.blockTarget.assign(halfTarget.begin() + first, halfTarget.begin() + last);
+          me.blockTet.assign(halfTet.begin() + first, halfTet.begin() + last);
           const std::size_t w0 = b << kBlockShift;
           const std::size_t w1 = std::min(nv, w0 + (std::size_t{ 1 } << kBlockShift));
           me.vertexFill.resize(w1 - w0);
@@ -184,9 +189,9 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
             me.vertexFill[v - w0] = start_[v] - base;
           for (std::int32_t j = 0; j < last - first; ++j)
           {
-            const std::int32_t at = me.vertexFill[lowBits_[static_cast<std::size_t>(first + j)]]++;
-            halfTarget_[static_cast<std::size_t>(at)] = me.blockTarget[static_cast<std::size_t>(j)];
-            halfTet_[static_cast<std::size_t>(at)] = me.blockTet[static_cast<std::size_t>(j)];
+            const std::int32_t at = me.vertexFill[lowBits[static_cast<std::size_t>(first + j)]]++;
+            halfTarget[static_cast<std::size_t>(at)] = me.blockTarget[static_cast<std::size_t>(j)];
+            halfTet[static_cast<std::size_t>(at)] = me.blockTet[static_cast<std::size_t>(j)];
           }
         }
       });
@@ -209,20 +214,20 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
           std::int32_t out = start_[a] - base;
           for (std::int32_t j = start_[a] - base; j < start_[a + 1] - base; ++j)
           {
-            const VertexId b = halfTarget_[static_cast<std::size_t>(j)];
+            const VertexId b = halfTarget[static_cast<std::size_t>(j)];
             if (stamp[static_cast<std::size_t>(b)] == static_cast<VertexId>(a))
               continue;
             stamp[static_cast<std::size_t>(b)] = static_cast<VertexId>(a);
-            halfTarget_[static_cast<std::size_t>(out)] = b;
-            halfTet_[static_cast<std::size_t>(out++)] = halfTet_[static_cast<std::size_t>(j)];
+            halfTarget[static_cast<std::size_t>(out)] = b;
+            halfTet[static_cast<std::size_t>(out++)] = halfTet[static_cast<std::size_t>(j)];
             ++unique_[a];
           }
         }
       });
     for (std::size_t a = v0; a < v1; ++a)
-      uniqueStart_[a + 1] = uniqueStart_[a] + unique_[a];
-    uniqueTarget_.resize(static_cast<std::size_t>(uniqueStart_[v1]));
-    uniqueTet_.resize(uniqueTarget_.size());
+      uniqueStart[a + 1] = uniqueStart[a] + unique_[a];
+    uniqueTarget.resize(static_cast<std::size_t>(uniqueStart[v1]));
+    uniqueTet.resize(uniqueTarget.size());
     splitRange(v0,
       vertexMiddle,
       v1,
@@ -231,20 +236,20 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
         for (std::size_t a = firstVertex; a < lastVertex; ++a)
         {
           const std::size_t from = static_cast<std::size_t>(start_[a] - base);
-          std::copy_n(halfTarget_.begin() + static_cast<std::ptrdiff_t>(from),
+          std::copy_n(halfTarget.begin() + static_cast<std::ptrdiff_t>(from),
             unique_[a],
-            uniqueTarget_.begin() + uniqueStart_[a]);
-          std::copy_n(halfTet_.begin() + static_cast<std::ptrdiff_t>(from),
+            uniqueTarget.begin() + uniqueStart[a]);
+          std::copy_n(halfTet.begin() + static_cast<std::ptrdiff_t>(from),
             unique_[a],
-            uniqueTet_.begin() + uniqueStart_[a]);
+            uniqueTet.begin() + uniqueStart[a]);
         }
       });
     firstBlock = lastBlock;
   }
 
-  release(halfTarget_);
-  release(halfTet_);
-  release(lowBits_);
+  release(halfTarget); // before the lists are made
+  release(halfTet);
+  release(lowBits);
 
   // 5. The lists: v's smaller neighbours (those of the first half's vertices, then the
   // second's, each in increasing order), then its larger ones. Per half of the vertices, the
@@ -257,8 +262,8 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
     {
       std::vector<std::int32_t>& incoming = half_[k].incoming;
       incoming.assign(nv, 0);
-      for (std::int32_t j = uniqueStart_[firstVertex]; j < uniqueStart_[lastVertex]; ++j)
-        ++incoming[static_cast<std::size_t>(uniqueTarget_[static_cast<std::size_t>(j)])];
+      for (std::int32_t j = uniqueStart[firstVertex]; j < uniqueStart[lastVertex]; ++j)
+        ++incoming[static_cast<std::size_t>(uniqueTarget[static_cast<std::size_t>(j)])];
     });
   offsets.assign(nv + 1, 0);
   for (std::size_t v = 0; v < nv; ++v)
@@ -277,10 +282,10 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
       for (std::size_t a = firstVertex; a < lastVertex; ++a)
       {
         std::int32_t own = offsets[a] + half_[0].incoming[a] + half_[1].incoming[a];
-        for (std::int32_t j = uniqueStart_[a]; j < uniqueStart_[a + 1]; ++j)
+        for (std::int32_t j = uniqueStart[a]; j < uniqueStart[a + 1]; ++j)
         {
-          const VertexId b = uniqueTarget_[static_cast<std::size_t>(j)];
-          const TetId t = uniqueTet_[static_cast<std::size_t>(j)];
+          const VertexId b = uniqueTarget[static_cast<std::size_t>(j)];
+          const TetId t = uniqueTet[static_cast<std::size_t>(j)];
           const std::int32_t at = me.cursor[static_cast<std::size_t>(b)]++;
           targets[static_cast<std::size_t>(at)] = static_cast<VertexId>(a);
           tetOf[static_cast<std::size_t>(at)] = t;

@@ -42,13 +42,6 @@ private:
     std::vector<std::int32_t> vertexFill;
   };
   std::vector<std::int32_t> start_, unique_;
-  std::vector<VertexId> halfTarget_; // a chunk's half edges
-  std::vector<TetId> halfTet_;
-  std::vector<std::uint16_t> lowBits_; // a half edge's smaller vertex within its block
-  // Every vertex's unique larger neighbours and their tets, from uniqueStart_[v].
-  std::vector<std::int32_t> uniqueStart_;
-  std::vector<VertexId> uniqueTarget_;
-  std::vector<TetId> uniqueTet_;
   Half half_[2];
 };
 

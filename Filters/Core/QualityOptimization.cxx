@@ -216,7 +216,7 @@ private:
   // what it wrote goes back to the whole's: as one memo, so that the work, which the work
   // bound counts, is the same.
   std::vector<std::uint64_t> changed_, smoothFailed_;
-  TetMemo tetFailed_, tetFailedSecondHalf_, insertFailed_;
+  TetMemo tetFailed_, insertFailed_;
   // The clock when the removal of an edge (edgeKey) last failed. The removal depends only
   // on the edge's shell, which every tet of the edge shares: without the memo an edge was
   // searched once per bad tet around it (gear.vtp at h = 0.127: 87% of the tets are bad).
@@ -657,6 +657,7 @@ void Optimizer::passInHalves(BadList& bad, bool swept)
 
   const bool twoThreads = wantTwoThreads(0);
   VertexTetIndex secondIndex;
+  TetMemo secondTetFailed; // side 1's copy of tetFailed_
   Worker sides[2];
   // The pass's smoothing moves left (-1: no bound) when a runHalves began. Each half gets a
   // share for its own bad tets, so that what comes after the halves finds at least the share
@@ -675,7 +676,7 @@ void Optimizer::passInHalves(BadList& bad, bool swept)
     // Side 0 uses the whole's index and tet memo (this thread does not meanwhile), side 1
     // copies.
     secondIndex.copyEntries(ctx_.index);
-    tetFailedSecondHalf_ = tetFailed_;
+    secondTetFailed = tetFailed_;
     Context view0(ctx_, ctx_.index, vertexSide_, 0), view1(ctx_, secondIndex, vertexSide_, 1);
     Context* views[2] = { &view0, &view1 };
     budgetLeft =
@@ -686,7 +687,7 @@ void Optimizer::passInHalves(BadList& bad, bool swept)
       w = Worker();
       w.ctx = views[s];
       w.edgeFailed = s == 0 ? &edgeFailed_ : &edgeFailedSecondHalf_;
-      w.tetFailed = s == 0 ? &tetFailed_ : &tetFailedSecondHalf_;
+      w.tetFailed = s == 0 ? &tetFailed_ : &secondTetFailed;
       w.clock = main_.clock;
       w.reportsProgress = s == 0; // this thread's
       w.moveBudget = shareOf(own[s].size());
@@ -697,7 +698,7 @@ void Optimizer::passInHalves(BadList& bad, bool swept)
       secondIndex, [&](VertexId v) { return vertexSide_[static_cast<std::size_t>(v)] == 1; });
     for (TetId t : sides[1].tetFailedWrites)
       tetFailed_.assign(
-        static_cast<std::uint64_t>(t), *tetFailedSecondHalf_.find(static_cast<std::uint64_t>(t)));
+        static_cast<std::uint64_t>(t), *secondTetFailed.find(static_cast<std::uint64_t>(t)));
     main_.clock = std::max(sides[0].clock, sides[1].clock) + 1;
     for (const Worker& w : sides)
     {
