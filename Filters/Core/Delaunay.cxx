@@ -1257,23 +1257,55 @@ DelaunayResult buildDelaunay(TetMesh& mesh, const DelaunayOptions& options)
   // reallocate (and never transiently double the memory) during insertion, with room for the
   // slots the halves leave unused (insertInHalves). Reserved pages cost nothing until touched.
   const std::size_t expectedTets = static_cast<std::size_t>(n) * 15 / 2 + 64;
-  if (mesh.coords.capacity() < 3 * (static_cast<std::size_t>(n) + 8))
-  {
-    // Room for the 8 box corners: the points move to storage advised onto huge pages before
-    // they are copied (reserve would copy them into fresh 4 KiB pages first: 6k page faults
-    // for 1M points).
-    std::vector<double> grown;
-    grown.reserve(3 * (static_cast<std::size_t>(n) + 8));
-    adviseHugePages(grown);
-    grown.assign(mesh.coords.begin(), mesh.coords.end());
-    mesh.coords.swap(grown);
-  }
   mesh.tets.reserve(4 * expectedTets);
   mesh.neighbors.reserve(4 * expectedTets);
   mesh.flags.reserve(expectedTets);
   adviseHugePages(mesh.tets);
   adviseHugePages(mesh.neighbors);
   adviseHugePages(mesh.flags);
+
+  // Insertion order, and renumbering: the points are copied in insertion order so that the
+  // coordinates of neighbouring tets are neighbours in memory (input order is often random,
+  // and then every in-sphere test would miss the cache). The symbolic perturbation still
+  // uses the caller's ids, so the mesh is the same as without renumbering; the tets are
+  // mapped back to the caller's ids at the end.
+  // Loops over all points or tets run in halves on two threads (the results are the same).
+  const bool twoThreads = options.partitioned && wantTwoThreads(options.threads);
+  constexpr std::size_t kMinHalves = 65536;
+  std::vector<std::size_t> roundStarts;
+  std::vector<VertexId> originalId =
+    brioOrder(mesh.coords.data(), n, 0x5eed5eedULL, &roundStarts, twoThreads);
+  for (VertexId v = n; v < n + 8; ++v)
+    originalId.push_back(v);
+  // The renumbered copy has room for the 8 box corners (ids n..n+7 in both numberings), on
+  // huge pages; at the end the input order is copied back into it, so the caller's array
+  // is never grown (a copy of every point into fresh memory, 50 ms for 1M points).
+  std::vector<double> inputCoords = std::move(mesh.coords);
+  mesh.coords = std::vector<double>();
+  mesh.coords.reserve(std::max(inputCoords.capacity(), 3 * (static_cast<std::size_t>(n) + 8)));
+  adviseHugePages(mesh.coords);
+  mesh.coords.resize(3 * static_cast<std::size_t>(n));
+  forHalves(static_cast<std::size_t>(n),
+    twoThreads,
+    kMinHalves,
+    [&](std::size_t begin, std::size_t end)
+    {
+      for (std::size_t i = begin; i < end; ++i)
+        for (int k = 0; k < 3; ++k)
+          mesh.coords[3 * i + k] = inputCoords[3 * static_cast<std::size_t>(originalId[i]) + k];
+    });
+  auto restoreInputOrder = [&]()
+  {
+    forHalves(3 * static_cast<std::size_t>(n),
+      twoThreads,
+      kMinHalves,
+      [&](std::size_t begin, std::size_t end)
+      {
+        std::copy(
+          inputCoords.begin() + begin, inputCoords.begin() + end, mesh.coords.begin() + begin);
+      });
+    inputCoords = std::vector<double>();
+  };
 
   result.firstBoxVertex = n;
   for (int corner = 0; corner < 8; ++corner)
@@ -1310,33 +1342,6 @@ DelaunayResult buildDelaunay(TetMesh& mesh, const DelaunayOptions& options)
             box[boxCount++] = mesh.addTet(v[0], v[1], v[2], v[3]);
         }
   glueByMatching(mesh, box, boxCount);
-
-  // Insertion order, and renumbering: the points are copied in insertion order so that the
-  // coordinates of neighbouring tets are neighbours in memory (input order is often random,
-  // and then every in-sphere test would miss the cache). The symbolic perturbation still
-  // uses the caller's ids, so the mesh is the same as without renumbering; the tets are
-  // mapped back to the caller's ids at the end.
-  // Loops over all points or tets run in halves on two threads (the results are the same).
-  const bool twoThreads = options.partitioned && wantTwoThreads(options.threads);
-  constexpr std::size_t kMinHalves = 65536;
-  std::vector<std::size_t> roundStarts;
-  std::vector<VertexId> originalId =
-    brioOrder(mesh.coords.data(), n, 0x5eed5eedULL, &roundStarts, twoThreads);
-  for (VertexId v = n; v < n + 8; ++v)
-    originalId.push_back(v);
-  std::vector<double> inputCoords = std::move(mesh.coords);
-  mesh.coords.reserve(inputCoords.size());
-  adviseHugePages(mesh.coords);
-  mesh.coords.resize(inputCoords.size());
-  forHalves(originalId.size(),
-    twoThreads,
-    kMinHalves,
-    [&](std::size_t begin, std::size_t end)
-    {
-      for (std::size_t i = begin; i < end; ++i)
-        for (int k = 0; k < 3; ++k)
-          mesh.coords[3 * i + k] = inputCoords[3 * static_cast<std::size_t>(originalId[i]) + k];
-    });
 
   InsertionWorkspace ws;
   ws.perturbationIds = originalId.data();
@@ -1382,7 +1387,7 @@ DelaunayResult buildDelaunay(TetMesh& mesh, const DelaunayOptions& options)
       {
         result.error = "vertex " + std::to_string(originalId[static_cast<std::size_t>(v)]) +
           " could not be inserted";
-        mesh.coords = std::move(inputCoords);
+        restoreInputOrder();
         return result;
       }
   }
@@ -1392,7 +1397,7 @@ DelaunayResult buildDelaunay(TetMesh& mesh, const DelaunayOptions& options)
     result.duplicates.push_back(originalId[static_cast<std::size_t>(v)]);
     result.duplicateOf.push_back(originalId[static_cast<std::size_t>(existing)]);
   }
-  mesh.coords = std::move(inputCoords);
+  restoreInputOrder();
   forHalves(static_cast<std::size_t>(mesh.tetCapacity()),
     twoThreads,
     kMinHalves,

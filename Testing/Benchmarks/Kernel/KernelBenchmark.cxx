@@ -5,8 +5,12 @@
 // mesh on one thread), `tetgen` (one thread), `cgal` (one thread) and `cgal-par` (CGAL's
 // parallel insertion with TBB, on all CPUs, when TBB is found). Ratios are against `ours`.
 // Every measurement runs in a forked child so that each one's peak RSS (getrusage) is its
-// own. Wall time and CPU time (user + system, of all threads) are both reported. Usage:
-// TetMesherKernelBenchmark [--quick] [--no-tetgen] [--no-cgal] [--no-10m]
+// own. Wall time and CPU time (user + system, of all threads) are both reported.
+// Each case runs every tool `--repeat` times, interleaved (ours, ours-1t, tetgen, cgal,
+// cgal-par, then again), so that a burst of load from the machine's other users falls on one
+// round rather than on one tool; each round's ratios are printed, then each tool's median run
+// (by wall time) and the ratios of the medians. Default: 3 rounds, 1 for the 10M row. Usage:
+// TetMesherKernelBenchmark [--quick] [--no-tetgen] [--no-cgal] [--no-10m] [--repeat N]
 // [--only uniform|sphere|grid]
 #include "Delaunay.h"
 
@@ -29,6 +33,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <random>
 #include <string>
 #include <vector>
@@ -270,6 +275,7 @@ void report(const char* who, const Measurement& m, double points, const Measurem
 int main(int argc, char** argv)
 {
   bool quick = false, tetgen = true, cgal = true, tenMillion = true;
+  int repeat = 0;   // 0: the default (3, or 1 for 10M points)
   std::string only; // --only KIND: that point set alone (uniform, sphere or grid)
   for (int i = 1; i < argc; ++i)
   {
@@ -286,10 +292,13 @@ int main(int argc, char** argv)
       cgal = false;
     else if (a == "--no-10m")
       tenMillion = false;
+    else if (a == "--repeat" && i + 1 < argc && std::atoi(argv[i + 1]) > 0)
+      repeat = std::atoi(argv[++i]);
     else
     {
       std::fprintf(stderr,
-        "usage: %s [--quick] [--no-tetgen] [--no-cgal] [--no-10m] [--only uniform|sphere|grid]\n",
+        "usage: %s [--quick] [--no-tetgen] [--no-cgal] [--no-10m] [--repeat N] "
+        "[--only uniform|sphere|grid]\n",
         argv[0]);
       return 2;
     }
@@ -314,31 +323,65 @@ int main(int argc, char** argv)
       continue;
     const std::vector<double> points = makePoints(c.kind, c.n);
     const double n = static_cast<double>(points.size() / 3);
-    std::printf("%s, %.0f points\n", c.kind.c_str(), n);
-    std::fflush(stdout);
-    const Measurement ours = runOurs(points, 0);
-    report("ours", ours, n, Measurement{});
-    std::fflush(stdout);
-    report("ours-1t", runOurs(points, 1), n, ours);
-    std::fflush(stdout);
-    if (tetgen)
+    const int rounds = repeat > 0 ? repeat : c.n > 5000000 ? 1 : 3;
+    struct Tool
     {
-      report("tetgen", runTetGen(points), n, ours);
-      std::fflush(stdout);
-    }
+      const char* name;
+      std::function<Measurement()> run;
+      std::vector<Measurement> runs;
+    };
+    std::vector<Tool> tools;
+    tools.push_back({ "ours", [&points]() { return runOurs(points, 0); }, {} });
+    tools.push_back({ "ours-1t", [&points]() { return runOurs(points, 1); }, {} });
+    if (tetgen)
+      tools.push_back({ "tetgen", [&points]() { return runTetGen(points); }, {} });
 #ifdef TETMESHER_BENCHMARK_CGAL
     if (cgal)
     {
-      report("cgal", runCgal(points), n, ours);
-      std::fflush(stdout);
+      tools.push_back({ "cgal", [&points]() { return runCgal(points); }, {} });
 #ifdef CGAL_LINKED_WITH_TBB
-      report("cgal-par", runCgalParallel(points), n, ours);
-      std::fflush(stdout);
+      tools.push_back({ "cgal-par", [&points]() { return runCgalParallel(points); }, {} });
 #endif
     }
 #else
     (void)cgal;
 #endif
+    std::printf("%s, %.0f points, %d round%s\n", c.kind.c_str(), n, rounds, rounds > 1 ? "s" : "");
+    std::fflush(stdout);
+    for (int r = 0; r < rounds; ++r)
+    {
+      for (Tool& tool : tools)
+        tool.runs.push_back(tool.run());
+      // This round's wall times, and each tool's time as a multiple of ours.
+      std::printf("  round %d:", r + 1);
+      const double oursSeconds = tools[0].runs.back().seconds;
+      for (const Tool& tool : tools)
+      {
+        const double s = tool.runs.back().seconds;
+        if (s < 0)
+          std::printf("  %s failed", tool.name);
+        else if (&tool == &tools[0] || oursSeconds <= 0)
+          std::printf("  %s %.3f s", tool.name, s);
+        else
+          std::printf("  %s %.3f s (%.2fx)", tool.name, s, s / oursSeconds);
+      }
+      std::printf("\n");
+      std::fflush(stdout);
+    }
+    // Each tool's median run by wall time (the upper one of an even count).
+    auto median = [](std::vector<Measurement> runs)
+    {
+      std::sort(runs.begin(),
+        runs.end(),
+        [](const Measurement& a, const Measurement& b) { return a.seconds < b.seconds; });
+      return runs[runs.size() / 2];
+    };
+    const Measurement ours = median(tools[0].runs);
+    if (rounds > 1)
+      std::printf("  medians of %d rounds:\n", rounds);
+    for (const Tool& tool : tools)
+      report(tool.name, median(tool.runs), n, &tool == &tools[0] ? Measurement{} : ours);
+    std::fflush(stdout);
   }
   return 0;
 }
