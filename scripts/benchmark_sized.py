@@ -159,20 +159,30 @@ def main():
     rows = []
     for case in runs:
         h = case["h"]
-        for tool in tools:
-            cmd, cwd, reader, outs = tool_job(tool, case, h, work, args.tetmesher)
-            walls, rsss = [], []
-            rc, msg = None, ""
-            for k in range(max(1, args.repeat)):
+        # The repeats go round the tools (A B C, A B C, ...), so that a burst of load from the
+        # machine's other users falls on one round of every tool rather than on one tool.
+        jobs = {tool: tool_job(tool, case, h, work, args.tetmesher) for tool in tools}
+        state = {tool: dict(walls=[], rsss=[], rc=None, msg="", done=False) for tool in tools}
+        for k in range(max(1, args.repeat)):
+            for tool in tools:
+                st = state[tool]
+                if st["done"]:
+                    continue
+                cmd, cwd, reader, outs = jobs[tool]
                 for o in outs:
                     if os.path.exists(o):
                         os.remove(o)
                 rc, wall, rss, msg = B.run_timed(cmd, args.timeout, cwd, log)
-                walls.append(wall)
+                st["walls"].append(wall)
                 if rss is not None:
-                    rsss.append(rss)
+                    st["rsss"].append(rss)
+                st["rc"], st["msg"] = rc, msg
                 if rc != 0 or wall > args.slow:
-                    break
+                    st["done"] = True
+        for tool in tools:
+            cmd, cwd, reader, outs = jobs[tool]
+            walls, rsss = state[tool]["walls"], state[tool]["rsss"]
+            rc, msg = state[tool]["rc"], state[tool]["msg"]
             row = dict(case=case["name"], h_factor=case["hlabel"], h=h, triangles=len(case["tris"]),
                        tool=tool, rc=rc, runs=len(walls), time_s=statistics.median(walls),
                        rss_mb=(max(rsss) / 1024.0 if rsss else None),
@@ -263,7 +273,8 @@ def write_outputs(args, rows, tools, command, started, finished):
               "with Mesh.Algorithm3D = 1 (*gmsh-delaunay*) or 10 (*gmsh-hxt*) on the surface merged "
               "as a discrete MSH 2.2 mesh (Gmsh keeps the discrete surface; Mesh.Optimize=1 default).")
     md.append("- time: wall time of the whole process (read, mesh, write), median of up to %d runs "
-              "(1 run if slower than %g s); time-out %g s. *tets/s* = tets / wall time; *rate x TM* "
+              "(1 run if slower than %g s), the repeats going round the tools (A B C, A B C) so that "
+              "a burst of load falls on every tool alike; time-out %g s. *tets/s* = tets / wall time; *rate x TM* "
               "= the tool's tets/s / TetMesher's (default run, same case and h)."
               % (args.repeat, args.slow, args.timeout))
     md.append("- checks (ours, on the output files, as in corpus.md): *bnd* = boundary kept exactly "
