@@ -197,6 +197,14 @@ void ReportMesh(const MeshOptions& options, StageClock& clock, const MeshSummary
   if (options.stats)
   {
     PrintQualityReport(stdout, options.output, summary.pointCount, summary.field);
+    // What the surface allows (SurfaceQualityBound.h), when one of its triangles caps Q below
+    // the level the share line counts as poor.
+    const double bound = summary.field("SurfaceQualityBound");
+    if (bound < 0.3)
+      std::printf("  bound       Q min <= %.3g for every mesh that keeps the surface "
+                  "(the shape of input cell %lld)\n",
+        bound,
+        static_cast<long long>(summary.field("SurfaceQualityBoundCellId")));
     PrintHistogram(stdout, summary.histogram);
   }
   if (options.timings)

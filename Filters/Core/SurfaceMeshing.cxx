@@ -3,6 +3,7 @@
 #include "MemoryBudget.h"
 #include "MeshAssembly.h"
 #include "ParallelPair.h"
+#include "SurfaceQualityBound.h"
 
 #include <algorithm>
 #include <chrono>
@@ -214,6 +215,13 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
   out.fieldData.emplace_back("RegionCount", result.regionCount);
   out.fieldData.emplace_back("TriangulatedPolygonCount", input.triangulatedPolygons);
   out.fieldData.emplace_back("MeshingSeconds", result.seconds);
+  // What the surface allows (SurfaceQualityBound.h): no mesh keeping it can have a higher Q
+  // min; -1 names no triangle when the bound is 1.
+  const SurfaceQualityBound bound =
+    surfaceQualityBound(input.points, input.triangles, input.triangleCount);
+  out.fieldData.emplace_back("SurfaceQualityBound", bound.bound);
+  out.fieldData.emplace_back("SurfaceQualityBoundCellId",
+    bound.triangle < 0 ? -1.0 : static_cast<double>(input.cellOfTriangle[bound.triangle]));
   lap("quality arrays");
 
   // The paper's figure 6 shows the histogram before and after optimisation.

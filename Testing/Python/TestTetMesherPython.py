@@ -70,6 +70,21 @@ def check(name, expected_regions, volume="all", **properties):
     # mesh, which optimisation has not touched yet).
     if not (np.all(q >= 0) and np.all(q <= 1)):
         problems.append("Quality outside [0, 1]")
+    # SurfaceQualityBound: 2 sqrt(6) area / longest edge^2 of the worst triangle (capped at 1),
+    # which no tet on that triangle exceeds; numpy's own evaluation, to 1e-12.
+    a, b, c = (points[triangles[:, k]] for k in range(3))
+    caps = 2 * np.sqrt(6) * 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1) / np.maximum.reduce(
+        [((b - a) ** 2).sum(1), ((c - a) ** 2).sum(1), ((c - b) ** 2).sum(1)])
+    bound = grid.GetFieldData().GetArray("SurfaceQualityBound").GetValue(0)
+    worst = int(grid.GetFieldData().GetArray("SurfaceQualityBoundCellId").GetValue(0))
+    if abs(bound - min(1.0, caps.min())) > 1e-12 * max(1.0, bound) or \
+            (caps.min() < 1 and worst != int(caps.argmin())) or (caps.min() >= 1 and worst != -1):
+        problems.append(f"SurfaceQualityBound {bound} (cell {worst}), numpy {caps.min()} (cell {caps.argmin()})")
+    on_face = np.full(len(tets), np.inf)
+    for t, f in zip(*np.nonzero(face_ids >= 0)):
+        on_face[t] = min(on_face[t], caps[face_ids[t][f]])
+    if np.any(q > on_face * (1 + 1e-12)):
+        problems.append("a tet on an input triangle beats the triangle's quality bound")
     # Determinism: the same input gives the same mesh.
     again, _ = mesh(points, triangles, **properties)
     p2, t2 = grid_arrays(again.GetOutput())
