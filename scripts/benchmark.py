@@ -298,6 +298,19 @@ def face_keys(tri, base):
     return (s[:, 0] * base + s[:, 1]) * base + s[:, 2]
 
 
+def surface_q_bound(pts, tris):
+    """The best Q min a mesh that keeps the surface can have (SurfaceQualityBound.h): a tet on a
+    triangle has Q <= 2 sqrt(6) area / longest edge^2; capped at 1."""
+    if len(tris) == 0:
+        return 1.0
+    a, b, c = (pts[tris[:, k]] for k in range(3))
+    longest = np.maximum.reduce([((b - a) ** 2).sum(1), ((c - a) ** 2).sum(1), ((c - b) ** 2).sum(1)])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        caps = 2 * np.sqrt(6) * 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1) / longest
+    caps = np.where(longest > 0, caps, 0.0)
+    return float(min(1.0, caps.min()))
+
+
 def analyse(case, pts_out, tets):
     """Boundary check, quality, volume. case: dict with pts, tris, expected mult, volume."""
     res = {}
@@ -542,7 +555,8 @@ def load_cases(names, data=DATA):
         else:
             volume = sum(signed_volume(pts, tris[sid == s]) for s in range(len(parent)) if parent[s] < 0)
         cases.append(dict(name=key, file=fn, path=path, pts=pts, tris=tris, faces=faces, sid=sid,
-                          parent=parent, mult=mult, fmult=fmult, volume=volume))
+                          parent=parent, mult=mult, fmult=fmult, volume=volume,
+                          q_bound=surface_q_bound(pts, tris)))
     if names:
         missing = set(names) - set(c["name"] for c in cases)
         if missing:
@@ -664,7 +678,8 @@ def main():
                 if rc != 0 or wall > args.slow:
                     break
             row = dict(case=case["name"], triangles=len(case["tris"]), input_points=len(case["pts"]),
-                       shells=len(case["parent"]), tool=tool, rc=rc, runs=len(walls),
+                       shells=len(case["parent"]), surface_q_bound=case["q_bound"], tool=tool, rc=rc,
+                       runs=len(walls),
                        time_s=statistics.median(walls), rss_mb=(max(rsss) / 1024.0 if rsss else None))
             present = rc == 0 and all(os.path.exists(o) for o in outs)
             err = ""
@@ -709,7 +724,7 @@ def main():
     print("results in %s (scratch: %s)" % (args.out, work))
 
 
-COLS = ["case", "triangles", "input_points", "shells", "tool", "success", "rc", "runs", "time_s",
+COLS = ["case", "triangles", "input_points", "shells", "surface_q_bound", "tool", "success", "rc", "runs", "time_s",
         "time_ratio", "rss_mb", "tets", "tets_ratio", "tets_per_s", "points", "steiner",
         "steiner_on_boundary", "input_points_lost", "boundary_kept", "tri_missing", "tri_wrong_mult",
         "extra_boundary_faces", "nonmanifold_faces", "q_min", "q_mean", "q_lt03", "dih_min",
@@ -780,10 +795,13 @@ def tables_md(rows, tools):
     # pivot: one line per case
     md.append("## Per case, TetMesher vs the others\n")
     md.append("Other tools: wall time as a multiple of TetMesher's (x0.5 = twice as fast as "
-              "TetMesher), whether the boundary is kept exactly, Q min. Details below.\n")
+              "TetMesher), whether the boundary is kept exactly, Q min. *Q bound*: the highest Q min "
+              "that a mesh keeping the surface can have, 2 sqrt(6) area / longest edge^2 of its "
+              "worst triangle (a tet on a triangle cannot do better; capped at 1; a tool that splits "
+              "the surface is not bound by it). Details below.\n")
     others = [t for t in tools if t != "tetmesher"]
-    md.append("| case | tris | TetMesher | %s |" % " | ".join(others))
-    md.append("|---|---|---|%s" % ("---|" * len(others)))
+    md.append("| case | tris | Q bound | TetMesher | %s |" % " | ".join(others))
+    md.append("|---|---|---|---|%s" % ("---|" * len(others)))
     by = {(r["case"], r["tool"]): r for r in rows}
     for c in dict.fromkeys(r["case"] for r in rows):
         m = by.get((c, "tetmesher"))
@@ -795,7 +813,9 @@ def tables_md(rows, tools):
         else:
             cell = "**%s**" % ("time-out" if m["rc"] == "timeout" else "FAIL")
         tri = next(r["triangles"] for r in rows if r["case"] == c)
-        md.append("| %s | %s | %s | %s |" % (c, tri, cell, " | ".join(short(by.get((c, t))) for t in others)))
+        bound = next((r.get("surface_q_bound") for r in rows if r["case"] == c), None)
+        md.append("| %s | %s | %s | %s | %s |" % (c, tri, fmt(bound, ".2g"), cell,
+                                                 " | ".join(short(by.get((c, t))) for t in others)))
     md.append("")
     # summary per tool
     md.append("## Summary per tool\n")
@@ -850,7 +870,8 @@ def rewrite_md(out):
                 else:
                     x = float(v)
                     r[k] = int(x) if x.is_integer() and k not in ("time_s", "time_ratio", "rss_mb",
-                                                                   "q_min", "q_mean", "q_lt03") else x
+                                                                   "q_min", "q_mean", "q_lt03",
+                                                                   "surface_q_bound") else x
             r["error"] = r["error"] or ""
             rows.append(r)
     tools = list(dict.fromkeys(r["tool"] for r in rows))
