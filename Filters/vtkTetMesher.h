@@ -17,7 +17,10 @@
  * doubles); Steiner points follow. Cell data: `Quality` (vtkTetQuality's Q), the dihedral
  * angles, `RegionId`, and `InputFaceIds` (4 components: for face i of the tet, the face
  * opposite its point i, the input cell id of the triangle it lies on, or -1). Field data:
- * the quality summary and `SteinerPointCount`, `RegionCount`.
+ * the quality summary and `SteinerPointCount`, `RegionCount`; `SurfaceQualityBound`, the
+ * highest Q min any mesh keeping the surface can have (a tet on input triangle F has
+ * Q <= 2 sqrt(6) area(F) / (longest edge of F)^2; capped at 1), and
+ * `SurfaceQualityBoundCellId`, the input cell giving it (-1 when it is 1).
  * Output 1: the histogram of Q as a vtkTable (as vtkTetQuality), with a column
  * `CountBeforeOptimization`.
  * Output 2: the input defects found by the check, to look at (see GetDefectsOutput).

@@ -55,6 +55,13 @@ problems = check_boundary_mesh(in_points, in_triangles, out_points, out_tets)
 assert not problems, problems
 assert tet_mesh.GetCellData().GetArray("Quality") is not None
 assert tet_mesh.GetCellData().GetArray("RegionId") is not None
+# The surface's quality bound (2 sqrt(6) area / longest edge^2 of its worst triangle, capped at 1)
+# in the field data, as numpy computes it.
+a, b, c = (in_points[in_triangles[:, k]] for k in range(3))
+caps = np.sqrt(6) * np.linalg.norm(np.cross(b - a, c - a), axis=1) / np.maximum.reduce(
+    [((b - a) ** 2).sum(1), ((c - a) ** 2).sum(1), ((c - b) ** 2).sum(1)])
+bound = tet_mesh.GetFieldData().GetArray("SurfaceQualityBound").GetValue(0)
+assert abs(bound - min(1.0, caps.min())) < 1e-12, (bound, caps.min())
 print("TetMesher proxy: %d tets, boundary exact" % len(out_tets))
 
 print("TestPluginPvpython: ok, Q min %.4f mean %.4f" % (q_ref.min(), q_ref.mean()))
