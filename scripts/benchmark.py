@@ -663,20 +663,30 @@ def main():
     started = datetime.datetime.now(datetime.timezone.utc)
     rows, qhist = [], {}
     for case in cases:
-        for tool in tools:
-            cmd, cwd, reader, outs = tool_job(tool, case, work, args.tetmesher)
-            walls, rsss = [], []
-            rc, msg = None, ""
-            for k in range(max(1, args.repeat)):
+        # The repeats go round the tools (A B C, A B C, ...), so that a burst of load from the
+        # machine's other users falls on one round of every tool rather than on one tool.
+        jobs = {tool: tool_job(tool, case, work, args.tetmesher) for tool in tools}
+        state = {tool: dict(walls=[], rsss=[], rc=None, msg="", done=False) for tool in tools}
+        for k in range(max(1, args.repeat)):
+            for tool in tools:
+                st = state[tool]
+                if st["done"]:
+                    continue
+                cmd, cwd, reader, outs = jobs[tool]
                 for o in outs:
                     if os.path.exists(o):
                         os.remove(o)
                 rc, wall, rss, msg = run_timed(cmd, args.timeout, cwd, log)
-                walls.append(wall)
+                st["walls"].append(wall)
                 if rss is not None:
-                    rsss.append(rss)
+                    st["rsss"].append(rss)
+                st["rc"], st["msg"] = rc, msg
                 if rc != 0 or wall > args.slow:
-                    break
+                    st["done"] = True
+        for tool in tools:
+            cmd, cwd, reader, outs = jobs[tool]
+            walls, rsss = state[tool]["walls"], state[tool]["rsss"]
+            rc, msg = state[tool]["rc"], state[tool]["msg"]
             row = dict(case=case["name"], triangles=len(case["tris"]), input_points=len(case["pts"]),
                        shells=len(case["parent"]), surface_q_bound=case["q_bound"], tool=tool, rc=rc,
                        runs=len(walls),
@@ -759,7 +769,8 @@ def write_outputs(args, rows, cases, tools, command, started, finished, qhist):
               "keeps the discrete surface but inserts interior points by default); `vtkDelaunay3D` "
               "(Alpha 0, Tolerance 1e-9, in a Python subprocess) on the surface points.")
     md.append("- time: wall time of the whole process (reading, meshing, writing), median of up to %d "
-              "runs (1 run if slower than %g s); RSS: peak resident set (`/usr/bin/time -f %%M`); "
+              "runs (1 run if slower than %g s), the repeats going round the tools (A B C, A B C) "
+              "since 2026-11-30 09:40; RSS: peak resident set (`/usr/bin/time -f %%M`); "
               "time-out %g s per run." % (args.repeat, args.slow, args.timeout))
     md.append("- checks (ours, on the output files): *bnd* = boundary kept exactly: output points "
               "mapped to input points by exact coordinate equality, every input triangle a face of "
