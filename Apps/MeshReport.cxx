@@ -54,7 +54,8 @@ void PrintSummaryLine(const std::string& input,
 void PrintQualityReport(std::FILE* out,
   const std::string& name,
   long long pointCount,
-  const FieldLookup& field)
+  const FieldLookup& field,
+  bool surfaceBound)
 {
   std::fprintf(out,
     "%s: %lld tetrahedra, %lld points\n",
@@ -74,6 +75,15 @@ void PrintQualityReport(std::FILE* out,
     "  dihedral    min %.2f deg  max %.2f deg\n",
     field("MinDihedralAngle"),
     field("MaxDihedralAngle"));
+  // What the surface allows (SurfaceQualityBound.h), when one of its triangles caps Q below
+  // the level the share line counts as poor.
+  const double bound = surfaceBound ? field("SurfaceQualityBound") : 1.0;
+  if (bound < 0.3)
+    std::fprintf(out,
+      "  bound       Q min <= %.3g for every mesh that keeps the surface (the shape of input "
+      "cell %lld)\n",
+      bound,
+      static_cast<long long>(field("SurfaceQualityBoundCellId")));
 }
 
 void PrintHistogram(std::FILE* out, const std::vector<std::int64_t>& counts)
@@ -196,15 +206,7 @@ void ReportMesh(const MeshOptions& options, StageClock& clock, const MeshSummary
     summary.seconds);
   if (options.stats)
   {
-    PrintQualityReport(stdout, options.output, summary.pointCount, summary.field);
-    // What the surface allows (SurfaceQualityBound.h), when one of its triangles caps Q below
-    // the level the share line counts as poor.
-    const double bound = summary.field("SurfaceQualityBound");
-    if (bound < 0.3)
-      std::printf("  bound       Q min <= %.3g for every mesh that keeps the surface "
-                  "(the shape of input cell %lld)\n",
-        bound,
-        static_cast<long long>(summary.field("SurfaceQualityBoundCellId")));
+    PrintQualityReport(stdout, options.output, summary.pointCount, summary.field, true);
     PrintHistogram(stdout, summary.histogram);
   }
   if (options.timings)

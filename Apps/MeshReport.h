@@ -21,11 +21,14 @@ using FieldLookup = std::function<double(const char*)>;
 // Redraws the progress bar on stderr (the caller checks that stderr is a terminal).
 void DrawProgress(double progress);
 
-// "NAME: N tetrahedra, M points" and the quality summary from the field data.
+// "NAME: N tetrahedra, M points" and the quality summary from the field data; with
+// surfaceBound (a mesh of ours: the field SurfaceQualityBound is there), also the bound the
+// surface puts on Q min when it is below 0.3.
 void PrintQualityReport(std::FILE* out,
   const std::string& name,
   long long pointCount,
-  const FieldLookup& field);
+  const FieldLookup& field,
+  bool surfaceBound);
 
 // The histogram of Q, one row per bin of equal width over [0, 1].
 void PrintHistogram(std::FILE* out, const std::vector<std::int64_t>& counts);

@@ -63,10 +63,12 @@ double FieldValue(vtkDataSet* mesh, const char* name)
 
 void PrintQualityReport(std::FILE* out, const std::string& name, vtkDataSet* mesh)
 {
-  PrintQualityReport(out,
+  PrintQualityReport(
+    out,
     name,
     static_cast<long long>(mesh->GetNumberOfPoints()),
-    [mesh](const char* field) { return FieldValue(mesh, field); });
+    [mesh](const char* field) { return FieldValue(mesh, field); },
+    mesh->GetFieldData()->GetArray("SurfaceQualityBound") != nullptr);
 }
 
 std::vector<std::int64_t> HistogramCounts(vtkTable* histogram)

@@ -120,6 +120,8 @@ with tempfile.TemporaryDirectory() as tmp:
         expect(["mesh", os.path.join(corpus, "anchor.off"), "-o", out, "-q", "--boundary-only", "--stats"] + extra,
                0, out_has=["bound       Q min <= 0.000709 for every mesh that keeps the surface "
                            "(the shape of input cell 891)"])
+    # `quality` says it too, from the mesh's field data.
+    expect(["quality", out], 0, out_has=["bound       Q min <= 0.000709"])
     # .stl goes through the reader module loaded on demand (libtetmesherSurfaceReaders.so).
     expect(["mesh", os.path.join(corpus, "sphere.stl"), "-o", out, "-q", "--boundary-only"], 0,
            out_has=["(0 interior, 0 Steiner)"])
