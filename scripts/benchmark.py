@@ -298,6 +298,31 @@ def face_keys(tri, base):
     return (s[:, 0] * base + s[:, 1]) * base + s[:, 2]
 
 
+def run_rounds(jobs, tools, repeat, timeout, slow, log):
+    """Runs each tool's job (cmd, cwd, reader, outs) up to `repeat` times, the repeats going round
+    the tools (A B C, A B C, ...) so that a burst of load from the machine's other users falls on
+    one round of every tool rather than on one tool. A tool stops repeating once it fails or
+    takes longer than `slow` seconds. Returns per tool: walls, rsss (KB), and the last rc, msg."""
+    state = {tool: dict(walls=[], rsss=[], rc=None, msg="", done=False) for tool in tools}
+    for _ in range(max(1, repeat)):
+        for tool in tools:
+            st = state[tool]
+            if st["done"]:
+                continue
+            cmd, cwd, reader, outs = jobs[tool]
+            for o in outs:
+                if os.path.exists(o):
+                    os.remove(o)
+            rc, wall, rss, msg = run_timed(cmd, timeout, cwd, log)
+            st["walls"].append(wall)
+            if rss is not None:
+                st["rsss"].append(rss)
+            st["rc"], st["msg"] = rc, msg
+            if rc != 0 or wall > slow:
+                st["done"] = True
+    return state
+
+
 def surface_q_bound(pts, tris):
     """The best Q min a mesh that keeps the surface can have (SurfaceQualityBound.h): a tet on a
     triangle has Q <= 2 sqrt(6) area / longest edge^2; capped at 1."""
@@ -663,26 +688,9 @@ def main():
     started = datetime.datetime.now(datetime.timezone.utc)
     rows, qhist = [], {}
     for case in cases:
-        # The repeats go round the tools (A B C, A B C, ...), so that a burst of load from the
-        # machine's other users falls on one round of every tool rather than on one tool.
+        # The repeats go round the tools (run_rounds).
         jobs = {tool: tool_job(tool, case, work, args.tetmesher) for tool in tools}
-        state = {tool: dict(walls=[], rsss=[], rc=None, msg="", done=False) for tool in tools}
-        for k in range(max(1, args.repeat)):
-            for tool in tools:
-                st = state[tool]
-                if st["done"]:
-                    continue
-                cmd, cwd, reader, outs = jobs[tool]
-                for o in outs:
-                    if os.path.exists(o):
-                        os.remove(o)
-                rc, wall, rss, msg = run_timed(cmd, args.timeout, cwd, log)
-                st["walls"].append(wall)
-                if rss is not None:
-                    st["rsss"].append(rss)
-                st["rc"], st["msg"] = rc, msg
-                if rc != 0 or wall > args.slow:
-                    st["done"] = True
+        state = run_rounds(jobs, tools, args.repeat, args.timeout, args.slow, log)
         for tool in tools:
             cmd, cwd, reader, outs = jobs[tool]
             walls, rsss = state[tool]["walls"], state[tool]["rsss"]

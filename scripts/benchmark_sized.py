@@ -159,26 +159,9 @@ def main():
     rows = []
     for case in runs:
         h = case["h"]
-        # The repeats go round the tools (A B C, A B C, ...), so that a burst of load from the
-        # machine's other users falls on one round of every tool rather than on one tool.
+        # The repeats go round the tools (B.run_rounds).
         jobs = {tool: tool_job(tool, case, h, work, args.tetmesher) for tool in tools}
-        state = {tool: dict(walls=[], rsss=[], rc=None, msg="", done=False) for tool in tools}
-        for k in range(max(1, args.repeat)):
-            for tool in tools:
-                st = state[tool]
-                if st["done"]:
-                    continue
-                cmd, cwd, reader, outs = jobs[tool]
-                for o in outs:
-                    if os.path.exists(o):
-                        os.remove(o)
-                rc, wall, rss, msg = B.run_timed(cmd, args.timeout, cwd, log)
-                st["walls"].append(wall)
-                if rss is not None:
-                    st["rsss"].append(rss)
-                st["rc"], st["msg"] = rc, msg
-                if rc != 0 or wall > args.slow:
-                    st["done"] = True
+        state = B.run_rounds(jobs, tools, args.repeat, args.timeout, args.slow, log)
         for tool in tools:
             cmd, cwd, reader, outs = jobs[tool]
             walls, rsss = state[tool]["walls"], state[tool]["rsss"]
