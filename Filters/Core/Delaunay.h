@@ -44,6 +44,14 @@ struct DelaunayResult
 // tets), and mesh.neighbors is symmetric with kNoNeighbor only on the box's faces.
 DelaunayResult buildDelaunay(TetMesh& mesh, const DelaunayOptions& options = {});
 
+// The same for the n points at `points` (3 doubles each, left untouched; not mesh.coords' own
+// storage, which this replaces), without a copy of them in mesh.coords first: on return
+// mesh.coords holds them, then the 8 box corners, as the overload above leaves it.
+DelaunayResult buildDelaunay(TetMesh& mesh,
+  const double* points,
+  VertexId n,
+  const DelaunayOptions& options = {});
+
 // Scratch buffers reused across insertions, so that inserting does not allocate.
 struct InsertionWorkspace;
 InsertionWorkspace* createInsertionWorkspace();

@@ -68,8 +68,7 @@ MesherResult meshSurface(const double* points,
   // Stage 1: Delaunay of the input points.
   auto stageStart = std::chrono::steady_clock::now();
   TetMesh mesh;
-  mesh.coords.assign(points, points + 3 * static_cast<std::size_t>(pointCount));
-  DelaunayResult delaunay = buildDelaunay(mesh);
+  DelaunayResult delaunay = buildDelaunay(mesh, points, pointCount);
   result.delaunaySeconds = secondsSince(stageStart);
   if (!delaunay.ok)
   {

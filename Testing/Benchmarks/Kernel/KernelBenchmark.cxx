@@ -134,10 +134,12 @@ Measurement runOurs(const std::vector<double>& points, int threads)
       m.baseRssBytes = peakRss(RUSAGE_SELF);
       const double start = nowSeconds(), cpuStart = cpuTime(RUSAGE_SELF);
       tetmesher::TetMesh mesh;
-      mesh.coords = points;
       tetmesher::DelaunayOptions options;
       options.threads = threads;
-      const tetmesher::DelaunayResult r = tetmesher::buildDelaunay(mesh, options);
+      // The points as the caller has them (CGAL's interface takes its own point type, which
+      // its row builds and times).
+      const tetmesher::DelaunayResult r = tetmesher::buildDelaunay(
+        mesh, points.data(), static_cast<tetmesher::VertexId>(points.size() / 3), options);
       m.seconds = nowSeconds() - start;
       m.cpuSeconds = cpuTime(RUSAGE_SELF) - cpuStart;
       if (!r.ok)
