@@ -1225,10 +1225,9 @@ TetId walkToPoint(const TetMesh& mesh, const double* p, TetId hint)
 
 DelaunayResult buildDelaunay(TetMesh& mesh, const DelaunayOptions& options)
 {
-  // The caller's array is the input: kept aside until the end, and its capacity kept.
+  // The caller's array is the input, kept aside until the end (the result gets a new one).
   const std::vector<double> input = std::move(mesh.coords);
   mesh.coords = std::vector<double>();
-  mesh.coords.reserve(input.capacity());
   return buildDelaunay(mesh, input.data(), static_cast<VertexId>(input.size() / 3), options);
 }
 
