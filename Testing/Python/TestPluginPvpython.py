@@ -40,7 +40,7 @@ counts = vtk_to_numpy(histogram.GetColumnByName("Count"))
 assert (counts == np.histogram(q_ref, bins=10, range=(0, 1))[0]).all(), counts
 # The mesher proxy on a real surface: the boundary of the result is exactly the input.
 from paraview.simple import XMLPolyDataReader  # noqa: E402
-from mesh_invariants import check_boundary_mesh  # noqa: E402
+from mesh_invariants import check_boundary_mesh, triangle_quality_caps  # noqa: E402
 
 surface_reader = XMLPolyDataReader(FileName=[os.path.join(data, "..", "..", "Data", "torus.vtp")])
 mesher = TetMesher(Input=surface_reader)  # noqa: F821 (defined by LoadPlugin)
@@ -57,9 +57,7 @@ assert tet_mesh.GetCellData().GetArray("Quality") is not None
 assert tet_mesh.GetCellData().GetArray("RegionId") is not None
 # The surface's quality bound (2 sqrt(6) area / longest edge^2 of its worst triangle, capped at 1)
 # in the field data, as numpy computes it.
-a, b, c = (in_points[in_triangles[:, k]] for k in range(3))
-caps = np.sqrt(6) * np.linalg.norm(np.cross(b - a, c - a), axis=1) / np.maximum.reduce(
-    [((b - a) ** 2).sum(1), ((c - a) ** 2).sum(1), ((c - b) ** 2).sum(1)])
+caps = triangle_quality_caps(in_points, in_triangles)
 bound = tet_mesh.GetFieldData().GetArray("SurfaceQualityBound").GetValue(0)
 assert abs(bound - min(1.0, caps.min())) < 1e-12, (bound, caps.min())
 print("TetMesher proxy: %d tets, boundary exact" % len(out_tets))

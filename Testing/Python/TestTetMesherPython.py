@@ -13,7 +13,7 @@ from vtkmodules.vtkCommonCore import vtkCommand
 from tetmesher import vtkTetMesher
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from mesh_invariants import check_boundary_mesh, enclosed_volume, shells  # noqa: E402
+from mesh_invariants import check_boundary_mesh, enclosed_volume, shells, triangle_quality_caps  # noqa: E402
 from surface_io import grid_arrays, read_surface, to_polydata  # noqa: E402
 
 data = sys.argv[1]
@@ -72,9 +72,7 @@ def check(name, expected_regions, volume="all", **properties):
         problems.append("Quality outside [0, 1]")
     # SurfaceQualityBound: 2 sqrt(6) area / longest edge^2 of the worst triangle (capped at 1),
     # which no tet on that triangle exceeds; numpy's own evaluation, to 1e-12.
-    a, b, c = (points[triangles[:, k]] for k in range(3))
-    caps = 2 * np.sqrt(6) * 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1) / np.maximum.reduce(
-        [((b - a) ** 2).sum(1), ((c - a) ** 2).sum(1), ((c - b) ** 2).sum(1)])
+    caps = triangle_quality_caps(points, triangles)
     bound = grid.GetFieldData().GetArray("SurfaceQualityBound").GetValue(0)
     worst = int(grid.GetFieldData().GetArray("SurfaceQualityBoundCellId").GetValue(0))
     if abs(bound - min(1.0, caps.min())) > 1e-12 * max(1.0, bound) or \

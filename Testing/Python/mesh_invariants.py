@@ -40,6 +40,14 @@ def tet_volume_exact(points, tet):
             + u[2] * (v[0] * w[1] - v[1] * w[0])) / 6
 
 
+def triangle_quality_caps(points, triangles):
+    """Per triangle, 2 sqrt(6) area / longest edge^2: no tet with that triangle as a face has a
+    higher Q (Filters/Core/SurfaceQualityBound.h), evaluated here independently."""
+    a, b, c = (points[triangles[:, k]] for k in range(3))
+    return np.sqrt(6) * np.linalg.norm(np.cross(b - a, c - a), axis=1) / np.maximum.reduce(
+        [((b - a) ** 2).sum(1), ((c - a) ** 2).sum(1), ((c - b) ** 2).sum(1)])
+
+
 def shells(triangles):
     """Triangles grouped into connected shells (by shared vertices): a list of index lists."""
     parent = {}
