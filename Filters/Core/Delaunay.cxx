@@ -38,6 +38,7 @@
 #include "MeshValidation.h"
 #include "ParallelPair.h"
 #include "Predicates.h"
+#include "SmallLattice.h"
 
 #include <algorithm>
 #include <cmath>
@@ -144,6 +145,9 @@ struct InsertionWorkspace
   // Ids that define the symbolic perturbation, when the mesh being built uses other ids
   // (buildDelaunay renumbers the points in insertion order); nullptr: the ids themselves.
   const VertexId* perturbationIds = nullptr;
+  // Vertices below this id lie on one small lattice (SmallLattice.h): in-sphere tests among
+  // them are exact in doubles. 0: none (buildDelaunay sets it for its input points alone).
+  VertexId smallLatticeVertices = 0;
   // Partitioned insertion only: the side this workspace inserts for, and its slots.
   const SpacePartition* partition = nullptr;
   SlotPool* pool = nullptr;
@@ -176,6 +180,21 @@ inline const double* pointOf(const double* coords, VertexId v)
   return coords + 3 * static_cast<std::size_t>(v);
 }
 
+// The perturbed in-sphere test of the insertion: by the small-lattice evaluation when all five
+// points are on the input's lattice, else filtered with the exact fallback (the same answers).
+inline int insphereOf(const InsertionWorkspace& ws,
+  const double* coords,
+  VertexId a,
+  VertexId b,
+  VertexId c,
+  VertexId d,
+  VertexId e)
+{
+  if (std::max({ a, b, c, d, e }) < ws.smallLatticeVertices)
+    return predicates::insphereSoSSmallLattice(coords, a, b, c, d, e, ws.perturbationIds);
+  return predicates::insphereSoSFiltered(coords, a, b, c, d, e, ws.perturbationIds);
+}
+
 // orient3d of face f of tet t (outward vertex order) with p: > 0 when p is on the inner side.
 inline int faceOrient(const TetMesh& mesh, const double* coords, TetId t, int f, const double* p)
 {
@@ -184,6 +203,25 @@ inline int faceOrient(const TetMesh& mesh, const double* coords, TetId t, int f,
     pointOf(coords, tv[kFaceVertices[f][1]]),
     pointOf(coords, tv[kFaceVertices[f][2]]),
     p);
+}
+
+// faceOrient, evaluated as on a small lattice (SmallLattice.h) when the face's vertices are
+// below `smallLatticeVertices` (p must then be on the lattice too).
+inline int faceOrientOf(const TetMesh& mesh,
+  const double* coords,
+  TetId t,
+  int f,
+  const double* p,
+  VertexId smallLatticeVertices)
+{
+  const VertexId* tv = &mesh.tets[4 * static_cast<std::size_t>(t)];
+  const VertexId a = tv[kFaceVertices[f][0]], b = tv[kFaceVertices[f][1]],
+                 c = tv[kFaceVertices[f][2]];
+  if (std::max({ a, b, c }) < smallLatticeVertices)
+    return predicates::orient3dSmallLattice(
+      pointOf(coords, a), pointOf(coords, b), pointOf(coords, c), p);
+  return predicates::orient3dFiltered(
+    pointOf(coords, a), pointOf(coords, b), pointOf(coords, c), p);
 }
 
 inline bool faceConstrained(const TetMesh& mesh, TetId t, int f)
@@ -216,13 +254,15 @@ constexpr TetId kPostponed = -2;
 
 // Partitioned: the walk never crosses a face whose 3 vertices all belong to the other side
 // (the other side may be rewriting the tets there); it returns kPostponed instead, and on
-// reaching the step limit.
+// reaching the step limit. smallLatticeVertices: as in InsertionWorkspace, when p is on the
+// lattice (0 otherwise).
 template<bool Partitioned = false>
 TetId walk(const TetMesh& mesh,
   const double* p,
   TetId start,
   std::uint64_t& rng,
-  const SpacePartition* side = nullptr)
+  const SpacePartition* side = nullptr,
+  VertexId smallLatticeVertices = 0)
 {
   const double* coords = mesh.coords.data();
   TetId t = start;
@@ -237,7 +277,7 @@ TetId walk(const TetMesh& mesh,
       const int f = static_cast<int>((r + i) & 3u);
       if (f == enteredBy) // p is known to be strictly on the inner side of this face
         continue;
-      if (faceOrient(mesh, coords, t, f, p) < 0)
+      if (faceOrientOf(mesh, coords, t, f, p, smallLatticeVertices) < 0)
       {
         if constexpr (Partitioned)
         {
@@ -462,8 +502,7 @@ bool growCavityFast(TetMesh& mesh, VertexId v, TetId start, InsertionWorkspace& 
           continue; // internal face
         if (Partitioned && !hasMark(uv, 3) && !ws.partition->ownsTet(uv))
         {
-          if (predicates::insphereSoSFiltered(
-                coords, uv[0], uv[1], uv[2], uv[3], v, ws.perturbationIds) > 0)
+          if (insphereOf(ws, coords, uv[0], uv[1], uv[2], uv[3], v) > 0)
           {
             unmarkCavity(tets, ws);
             return false;
@@ -472,8 +511,7 @@ bool growCavityFast(TetMesh& mesh, VertexId v, TetId start, InsertionWorkspace& 
         else if (!hasMark(uv, 3))
         {
           setMark(uv, 3);
-          if (predicates::insphereSoSFiltered(
-                coords, uv[0], uv[1], uv[2], unmarked(uv[3]), v, ws.perturbationIds) > 0)
+          if (insphereOf(ws, coords, uv[0], uv[1], uv[2], unmarked(uv[3]), v) > 0)
           {
             setMark(uv, 2);
             __builtin_prefetch(neighbors + 4 * static_cast<std::size_t>(faceTet(n)));
@@ -543,8 +581,7 @@ bool growCavityChecked(TetMesh& mesh,
         {
           // The other side may read this tet: no mark. In conflict, the cavity would cross
           // into it; else its face is a boundary face, below (never kInCavity).
-          if (predicates::insphereSoSFiltered(
-                coords, uv[0], uv[1], uv[2], uv[3], v, ws.perturbationIds) > 0)
+          if (insphereOf(ws, coords, uv[0], uv[1], uv[2], uv[3], v) > 0)
           {
             clearMarks(mesh, ws);
             *crossed = true;
@@ -553,8 +590,7 @@ bool growCavityChecked(TetMesh& mesh,
         }
         else if (!constrained && !(flags[u] & (kInCavity | kRejected)))
         {
-          if (predicates::insphereSoSFiltered(
-                coords, uv[0], uv[1], uv[2], uv[3], v, ws.perturbationIds) > 0)
+          if (insphereOf(ws, coords, uv[0], uv[1], uv[2], uv[3], v) > 0)
           {
             flags[u] |= kInCavity;
             ws.cavity.push_back(u);
@@ -854,7 +890,8 @@ InsertResult insertImpl(TetMesh& mesh, VertexId v, TetId hint, InsertionWorkspac
     if (hint < 0)
       return { InsertStatus::OutsideMesh, -1, -1 };
   }
-  TetId t = walk<Partitioned>(mesh, p, hint, ws.rng, ws.partition);
+  TetId t = walk<Partitioned>(
+    mesh, p, hint, ws.rng, ws.partition, v < ws.smallLatticeVertices ? ws.smallLatticeVertices : 0);
   if (Partitioned && t < 0)
     return { InsertStatus::Postponed, -1, -1 };
   // A walk that reaches the hull proves p outside only for a convex triangulation (the box);
@@ -1113,6 +1150,7 @@ void insertInHalves(TetMesh& mesh,
     me.ws.partition = &me.partition;
     me.ws.pool = &me.pool;
     me.ws.perturbationIds = mainWs.perturbationIds;
+    me.ws.smallLatticeVertices = mainWs.smallLatticeVertices;
     for (VertexId v : me.points)
     {
       const InsertResult r = insertImpl<false, true>(mesh, v, me.hint, me.ws);
@@ -1352,6 +1390,8 @@ DelaunayResult buildDelaunay(TetMesh& mesh,
 
   InsertionWorkspace ws;
   ws.perturbationIds = originalId.data();
+  if (options.smallLatticePredicates && smallLatticeBits(points, n, lo) > 0)
+    ws.smallLatticeVertices = n;
   TetId hint = box[0];
   std::vector<std::pair<VertexId, VertexId>> duplicates; // (id, the id it duplicates)
   auto insertInOrder = [&](VertexId v)

@@ -24,6 +24,10 @@ struct DelaunayOptions
   // Threads for the two halves: 0 = two when the machine has two CPUs, 1 = one after the
   // other. The mesh, numbering included, does not depend on it.
   int threads = 0;
+  // Input points on a small lattice (SmallLattice.h) are tested by exact double evaluation
+  // instead of the filtered predicates with their exact fallback; the answers, hence the
+  // mesh, are the same. false: the general predicates always (for tests).
+  bool smallLatticePredicates = true;
 };
 
 struct DelaunayResult

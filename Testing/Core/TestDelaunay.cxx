@@ -5,6 +5,7 @@
 #include "MeshValidation.h"
 #include "PointSets.h"
 #include "Predicates.h"
+#include "SmallLattice.h"
 
 #include <gtest/gtest.h>
 
@@ -161,6 +162,77 @@ TEST(Delaunay, SameInputGivesIdenticalMesh)
   ASSERT_TRUE(buildDelaunay(g1).ok);
   ASSERT_TRUE(buildDelaunay(g2).ok);
   EXPECT_EQ(g1.tets, g2.tets);
+}
+
+TEST(Delaunay, SmallLatticeBitsOfPointSets)
+{
+  auto bits = [](const TetMesh& mesh)
+  {
+    double lo[3] = { 0, 0, 0 };
+    for (int k = 0; k < 3; ++k)
+      for (VertexId v = 0; v < mesh.vertexCount(); ++v)
+        lo[k] = v == 0 ? mesh.point(v)[k] : std::min(lo[k], mesh.point(v)[k]);
+    return smallLatticeBits(mesh.coords.data(), mesh.vertexCount(), lo);
+  };
+  EXPECT_EQ(bits(gridPoints(100)), 7); // 0..99
+  TetMesh shifted = gridPoints(9);     // 0..8 in steps of 2^-3, at 1000.5
+  for (double& c : shifted.coords)
+    c = 1000.5 + c / 8;
+  EXPECT_EQ(bits(shifted), 4);
+  TetMesh decimal = gridPoints(5); // steps of 0.1 are not a power of two
+  for (double& c : decimal.coords)
+    c *= 0.1;
+  EXPECT_EQ(bits(decimal), 0);
+  TetMesh wide;
+  wide.addVertex(0, 0, 0);
+  wide.addVertex(511, 3, 1);
+  EXPECT_EQ(bits(wide), 9);
+  wide.addVertex(512, 0, 0); // 10 bits: products could round
+  EXPECT_EQ(bits(wide), 0);
+  TetMesh one = gridPoints(4);
+  one.addVertex(1.5, 2, std::nextafter(2.0, 3.0));
+  EXPECT_EQ(bits(one), 0);
+  TetMesh tiny = gridPoints(3); // exact, but products of differences would leave the normals
+  for (double& c : tiny.coords)
+    c = std::ldexp(c, -300);
+  EXPECT_EQ(bits(tiny), 0);
+  EXPECT_EQ(bits(randomPoints(100, 3)), 0);
+  EXPECT_EQ(bits(TetMesh()), 0);
+}
+
+// The small-lattice evaluation (exact in doubles) must answer every test as the filtered
+// predicates with their exact fallback do: the same tets, in the same slots, on lattices
+// that take the serial insertion and the two halves, with duplicates among the points.
+TEST(Delaunay, SmallLatticeGivesTheSameMesh)
+{
+  std::vector<TetMesh> inputs;
+  inputs.push_back(gridPoints(12));
+  TetMesh shifted = gridPoints(10);
+  for (double& c : shifted.coords)
+    c = -3.25 + c / 4;
+  inputs.push_back(shifted);
+  std::mt19937 gen(5);
+  std::uniform_int_distribution<int> coordinate(0, 511);
+  TetMesh scattered; // many co-spherical and co-planar groups, and duplicates
+  for (int i = 0; i < 30000; ++i)
+    scattered.addVertex(coordinate(gen) / 64 * 64, coordinate(gen) / 32 * 32, coordinate(gen));
+  inputs.push_back(scattered);
+  inputs.push_back(gridPoints(40)); // 64000 points: the last rounds go in halves
+  for (const TetMesh& input : inputs)
+  {
+    TetMesh fast = input, general = input;
+    DelaunayOptions options;
+    options.validate = true;
+    const DelaunayResult rf = buildDelaunay(fast, options);
+    ASSERT_TRUE(rf.ok) << rf.error;
+    options.smallLatticePredicates = false;
+    options.validate = false;
+    const DelaunayResult rg = buildDelaunay(general, options);
+    ASSERT_TRUE(rg.ok) << rg.error;
+    EXPECT_EQ(fast.tets, general.tets) << input.vertexCount() << " points";
+    EXPECT_EQ(fast.neighbors, general.neighbors) << input.vertexCount() << " points";
+    EXPECT_EQ(rf.duplicates, rg.duplicates);
+  }
 }
 
 TEST(Delaunay, HullVolumeWithCubeCorners)
