@@ -72,7 +72,12 @@ inline int insphereSoSSmallLattice(const double* coords,
   if (det != 0)
     return det > 0 ? 1 : -1;
   // The tie break of insphereTieBreak (Predicates.cxx): the cofactors of the lifts, by
-  // decreasing perturbation id.
+  // decreasing perturbation id. Each is an orientation of four of the points, which the
+  // minors above already hold exactly: abc = orient3d(a,b,c,e), bcd = orient3d(b,c,d,e),
+  // cda = orient3d(c,d,a,e), dab = orient3d(d,a,b,e); replacing point k by e gives
+  // orient3d(e,b,c,d) = -bcd, orient3d(a,e,c,d) = cda, orient3d(a,b,e,d) = -dab and
+  // orient3d(a,b,c,e) = abc, and -orient3d(a,b,c,d) = -(abc - bcd + cda - dab).
+  const double cofactor[5] = { -bcd, cda, -dab, abc, -(abc - bcd + cda - dab) };
   VertexId ids[5] = { a, b, c, d, e };
   if (perturbationIds)
     for (VertexId& id : ids)
@@ -86,17 +91,8 @@ inline int insphereSoSSmallLattice(const double* coords,
       if (!((taken >> i) & 1u) && (k < 0 || ids[i] > ids[k]))
         k = i;
     taken |= 1u << k;
-    int s;
-    if (k == 4)
-      s = -orient3dSmallLattice(p[0], p[1], p[2], p[3]);
-    else
-    {
-      const double* q[4] = { p[0], p[1], p[2], p[3] };
-      q[k] = p[4];
-      s = orient3dSmallLattice(q[0], q[1], q[2], q[3]);
-    }
-    if (s != 0)
-      return s;
+    if (cofactor[k] != 0)
+      return cofactor[k] > 0 ? 1 : -1;
   }
   return 0; // only for a flat (a,b,c,d), which violates the precondition
 }
