@@ -283,9 +283,10 @@ double powerOfTwo(int e)
 // The differences points[i] - origin as integers, scaled by 2^-(the lowest bit set in any
 // of them): returns the bits the largest then needs (every |out| < 2^bits; 0 when all are
 // zero), or -1 when a difference is not exact in double. Past kMaxLatticeBits, out is not
-// filled and the count is returned as soon as it is reached (a later difference may be inexact). The bit positions come from each double's exponent and significand, in one pass:
-// the lattice's differences took 4% of a refinement run (fandisk at h = 0.0103) through
-// frexp and ldexp, twice per in-sphere test (11 bits, then 24).
+// filled and the count is returned as soon as it is reached (a later difference may be inexact).
+// The bit positions come from each double's exponent and significand, in one pass: the lattice's
+// differences took 4% of a refinement run (fandisk at h = 0.0103) through frexp and ldexp, twice
+// per in-sphere test (11 bits, then 24).
 int integerDifferences(const double* const* points,
   int count,
   const double* origin,
