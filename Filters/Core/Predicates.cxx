@@ -6,6 +6,7 @@
 // sum as an expansion, so the sign is the sign of the exact real determinant.
 #include "Predicates.h"
 
+#include "BinaryParts.h"
 #include "ExpansionArithmetic.h"
 #include "FilteredPredicates.h"
 
@@ -244,31 +245,6 @@ int insphereExtended(const double* a,
 // 6 * 2^(3 bits) < 2^63 (bits = 20). The scaling is by a positive power of two, which
 // leaves the determinants' signs as they are.
 constexpr int kMaxLatticeBits = 24;
-
-// A finite double as significand * 2^exponent (significand < 2^53, 0 for zero), and the
-// widening of [lowest, highest] to the positions of its lowest and highest set bits.
-struct BinaryParts
-{
-  std::uint64_t significand;
-  int exponent;
-};
-BinaryParts binaryParts(double x, int& lowest, int& highest)
-{
-  std::uint64_t bits;
-  std::memcpy(&bits, &x, sizeof bits);
-  int e = static_cast<int>((bits >> 52) & 0x7FF);
-  std::uint64_t m = bits & ((std::uint64_t(1) << 52) - 1);
-  if (e != 0)
-    m |= std::uint64_t(1) << 52;
-  else
-    e = 1; // subnormal
-  if (m != 0)
-  {
-    lowest = std::min(lowest, e - 1075 + __builtin_ctzll(m));
-    highest = std::max(highest, e - 1075 + 63 - __builtin_clzll(m));
-  }
-  return { m, e - 1075 };
-}
 
 // 2^e as a double, for |e| <= 1022 (a normal number: multiplying by it is exact unless the
 // product leaves the normal range).

@@ -1,10 +1,9 @@
 #include "SmallLattice.h"
 
+#include "BinaryParts.h"
 #include "ExpansionArithmetic.h"
 
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <limits>
 
 namespace tetmesher
@@ -13,22 +12,6 @@ namespace tetmesher
 namespace
 {
 constexpr int kMaxBits = 9; // 72 * 2^(5 * 9) < 2^53: see SmallLattice.h
-
-// Widens [lowest, highest] to the positions of the lowest and highest set bits of x, a
-// finite non-zero double.
-void widenBitRange(double x, int& lowest, int& highest)
-{
-  std::uint64_t bits;
-  std::memcpy(&bits, &x, sizeof bits);
-  int e = static_cast<int>((bits >> 52) & 0x7FF);
-  std::uint64_t m = bits & ((std::uint64_t(1) << 52) - 1);
-  if (e != 0)
-    m |= std::uint64_t(1) << 52;
-  else
-    e = 1; // subnormal
-  lowest = std::min(lowest, e - 1075 + __builtin_ctzll(m));
-  highest = std::max(highest, e - 1075 + 63 - __builtin_clzll(m));
-}
 } // namespace
 
 int smallLatticeBits(const double* points, VertexId n, const double lo[3])
@@ -43,7 +26,7 @@ int smallLatticeBits(const double* points, VertexId n, const double lo[3])
       return 0;
     if (offset == 0.0)
       continue;
-    widenBitRange(offset, lowest, highest);
+    binaryParts(offset, lowest, highest);
     if (highest - lowest + 1 > kMaxBits)
       return 0;
   }
