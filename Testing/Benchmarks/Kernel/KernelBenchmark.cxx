@@ -11,7 +11,7 @@
 // round rather than on one tool; each round's ratios are printed, then each tool's median run
 // (by wall time) and the ratios of the medians. Default: 3 rounds, 1 for the 10M row. Usage:
 // TetMesherKernelBenchmark [--quick] [--no-tetgen] [--no-cgal] [--no-10m] [--repeat N]
-// [--only uniform|sphere|grid]
+// [--only uniform|sphere|grid|grid-tenth]
 #include "Delaunay.h"
 
 #ifdef TETMESHER_BENCHMARK_CGAL
@@ -102,13 +102,17 @@ std::vector<double> makePoints(const std::string& kind, std::size_t n)
   std::mt19937_64 gen(2024);
   std::uniform_real_distribution<double> u(0, 1);
   std::normal_distribution<double> g;
-  if (kind == "grid")
+  if (kind == "grid" || kind == "grid-tenth")
   {
+    // grid-tenth: the same grid in steps of 0.1 (each coordinate the double nearest i/10), not
+    // a lattice of one power of two, so the kernel's small-lattice evaluation does not apply
+    // and the co-spherical cells are decided by the filters and exact stages.
     const int m = static_cast<int>(std::lround(std::cbrt(static_cast<double>(n))));
+    auto at = [&kind](int i) { return kind == "grid" ? double(i) : double(i) / 10; };
     for (int i = 0; i < m; ++i)
       for (int j = 0; j < m; ++j)
         for (int k = 0; k < m; ++k)
-          p.insert(p.end(), { double(i), double(j), double(k) });
+          p.insert(p.end(), { at(i), at(j), at(k) });
     return p;
   }
   p.reserve(3 * n);
@@ -277,14 +281,16 @@ void report(const char* who, const Measurement& m, double points, const Measurem
 int main(int argc, char** argv)
 {
   bool quick = false, tetgen = true, cgal = true, tenMillion = true;
-  int repeat = 0;   // 0: the default (3, or 1 for 10M points)
-  std::string only; // --only KIND: that point set alone (uniform, sphere or grid)
+  int repeat = 0; // 0: the default (3, or 1 for 10M points)
+  // --only KIND: that point set alone (uniform, sphere, grid; grid-tenth, the grid in steps of
+  // 0.1, runs only when asked for)
+  std::string only;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
     if (a == "--only" && i + 1 < argc &&
       (std::string(argv[i + 1]) == "uniform" || std::string(argv[i + 1]) == "sphere" ||
-        std::string(argv[i + 1]) == "grid"))
+        std::string(argv[i + 1]) == "grid" || std::string(argv[i + 1]) == "grid-tenth"))
       only = argv[++i];
     else if (a == "--quick")
       quick = true;
@@ -300,7 +306,7 @@ int main(int argc, char** argv)
     {
       std::fprintf(stderr,
         "usage: %s [--quick] [--no-tetgen] [--no-cgal] [--no-10m] [--repeat N] "
-        "[--only uniform|sphere|grid]\n",
+        "[--only uniform|sphere|grid|grid-tenth]\n",
         argv[0]);
       return 2;
     }
@@ -312,16 +318,20 @@ int main(int argc, char** argv)
   };
   std::vector<Case> cases;
   if (quick)
-    cases = { { "uniform", 100000 }, { "sphere", 100000 }, { "grid", 27000 } };
+    cases = {
+      { "uniform", 100000 }, { "sphere", 100000 }, { "grid", 27000 }, { "grid-tenth", 27000 }
+    };
   else
   {
-    cases = { { "uniform", 1000000 }, { "sphere", 1000000 }, { "grid", 1000000 } };
+    cases = {
+      { "uniform", 1000000 }, { "sphere", 1000000 }, { "grid", 1000000 }, { "grid-tenth", 1000000 }
+    };
     if (tenMillion)
       cases.push_back({ "uniform", 10000000 });
   }
   for (const Case& c : cases)
   {
-    if (!only.empty() && c.kind != only)
+    if (only.empty() ? c.kind == "grid-tenth" : c.kind != only)
       continue;
     const std::vector<double> points = makePoints(c.kind, c.n);
     const double n = static_cast<double>(points.size() / 3);
