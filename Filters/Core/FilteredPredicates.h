@@ -27,6 +27,10 @@ int insphereExact(const double* a,
 int orient2dExact(double ax, double ay, double bx, double by, double cx, double cy);
 // Symbolic-perturbation tie break, called only when insphere is exactly zero.
 int insphereTieBreak(const double* const points[5], const VertexId ids[5]);
+// The exact stages of insphere with the symbolic perturbation (never 0 for a positively
+// oriented points[0..3]): insphereExact, then on a zero insphereTieBreak, except that the
+// integer stages answer their own zeros from the determinant's minors.
+int insphereExactSoS(const double* const points[5], const VertexId ids[5]);
 
 namespace bounds
 {
@@ -63,7 +67,9 @@ inline int orient3dFiltered(const double* a, const double* b, const double* c, c
   return orient3dExact(a, b, c, d);
 }
 
-inline int insphereFiltered(const double* a,
+// The in-sphere filter alone: the sign where the filter decides it, else kUndecided.
+constexpr int kUndecided = 2;
+inline int insphereFilter(const double* a,
   const double* b,
   const double* c,
   const double* d,
@@ -112,7 +118,17 @@ inline int insphereFiltered(const double* a,
     return 1;
   if (-det > bound)
     return -1;
-  return insphereExact(a, b, c, d, e);
+  return kUndecided;
+}
+
+inline int insphereFiltered(const double* a,
+  const double* b,
+  const double* c,
+  const double* d,
+  const double* e)
+{
+  const int s = insphereFilter(a, b, c, d, e);
+  return s != kUndecided ? s : insphereExact(a, b, c, d, e);
 }
 
 // insphereSoS on raw coordinates (coords = mesh.coords.data()), for hot loops.
@@ -132,8 +148,8 @@ inline int insphereSoSFiltered(const double* coords,
   const double* pc = coords + 3 * static_cast<std::size_t>(c);
   const double* pd = coords + 3 * static_cast<std::size_t>(d);
   const double* pe = coords + 3 * static_cast<std::size_t>(e);
-  const int s = insphereFiltered(pa, pb, pc, pd, pe);
-  if (s != 0)
+  const int s = insphereFilter(pa, pb, pc, pd, pe);
+  if (s != kUndecided)
     return s;
   const double* const points[5] = { pa, pb, pc, pd, pe };
   if (perturbationIds)
@@ -143,10 +159,10 @@ inline int insphereSoSFiltered(const double* coords,
       perturbationIds[c],
       perturbationIds[d],
       perturbationIds[e] };
-    return insphereTieBreak(points, ids);
+    return insphereExactSoS(points, ids);
   }
   const VertexId ids[5] = { a, b, c, d, e };
-  return insphereTieBreak(points, ids);
+  return insphereExactSoS(points, ids);
 }
 
 } // namespace predicates

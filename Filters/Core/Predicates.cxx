@@ -318,10 +318,39 @@ int orient3dLattice(const double* a, const double* b, const double* c, const dou
   return 2 + (det > 0) - (det < 0);
 }
 
-// The in-sphere determinant of integer differences m (rows a-e .. d-e), in an integer type
-// wide enough for 72 * max|m|^5.
+// The symbolic perturbation's answer (insphereTieBreak) when the in-sphere determinant is
+// exactly zero, from the exact signs of its lift cofactors' orientations: abc =
+// orient3d(a,b,c,e), bcd = orient3d(b,c,d,e), cda = orient3d(c,d,a,e), dab = orient3d(d,a,b,e)
+// (the 3x3 minors of the differences from e), and abcd = orient3d(a,b,c,d) = abc - bcd + cda -
+// dab. Replacing point k by e gives C_0 = -bcd, C_1 = cda, C_2 = -dab, C_3 = abc, and C_4 =
+// -abcd; the first non-zero one by decreasing id decides (0 only for a flat a,b,c,d).
+int tieBreakFromMinors(int abc, int bcd, int cda, int dab, int abcd, const VertexId ids[5])
+{
+  const int cofactor[5] = { -bcd, cda, -dab, abc, -abcd };
+  unsigned taken = 0;
+  for (int step = 0; step < 5; ++step)
+  {
+    int k = -1;
+    for (int i = 0; i < 5; ++i)
+      if (!((taken >> i) & 1u) && (k < 0 || ids[i] > ids[k]))
+        k = i;
+    taken |= 1u << k;
+    if (cofactor[k] != 0)
+      return cofactor[k];
+  }
+  return 0;
+}
+
 template<typename Int>
-int insphereOfIntegers(const long long (*m)[3])
+int signOf(Int x)
+{
+  return (x > 0) - (x < 0);
+}
+
+// The in-sphere determinant of integer differences m (rows a-e .. d-e), in an integer type
+// wide enough for 72 * max|m|^5; on a zero, with `ids`, the perturbed answer.
+template<typename Int>
+int insphereOfIntegers(const long long (*m)[3], const VertexId* ids)
 {
   auto x = [m](int i, int k) { return static_cast<Int>(m[i][k]); };
   const Int ab = x(0, 0) * x(1, 1) - x(1, 0) * x(0, 1);
@@ -338,14 +367,19 @@ int insphereOfIntegers(const long long (*m)[3])
   for (int i = 0; i < 4; ++i)
     lift[i] = x(i, 0) * x(i, 0) + x(i, 1) * x(i, 1) + x(i, 2) * x(i, 2);
   const Int det = (lift[3] * abc - lift[2] * dab) + (lift[1] * cda - lift[0] * bcd);
-  return 2 + (det > 0) - (det < 0);
+  if (det == 0 && ids)
+    return 2 +
+      tieBreakFromMinors(
+        signOf(abc), signOf(bcd), signOf(cda), signOf(dab), signOf(abc - bcd + cda - dab), ids);
+  return 2 + signOf(det);
 }
 
 int insphereLattice(const double* a,
   const double* b,
   const double* c,
   const double* d,
-  const double* e)
+  const double* e,
+  const VertexId* ids)
 {
   const double* const pts[4] = { a, b, c, d };
   long long m[4][3];
@@ -353,12 +387,12 @@ int insphereLattice(const double* a,
   if (bits < 0)
     return 0;
   if (bits <= 11)
-    return insphereOfIntegers<long long>(m);
+    return insphereOfIntegers<long long>(m, ids);
 #ifdef __SIZEOF_INT128__
   // 128 bits hold 72 * 2^(5 * 24): lattices with finer steps relative to their extent (the
   // refinement's snapped lattice: steps of a/4096 and more) stay out of the expansions.
   if (bits <= kMaxLatticeBits)
-    return insphereOfIntegers<__int128>(m);
+    return insphereOfIntegers<__int128>(m, ids);
 #endif
   return 0;
 }
@@ -538,7 +572,7 @@ Wide<1> low(const Wide<2>& x)
 // below 2^(128 L - 3) in 2L limbs, cofactors below 2^(192 L - 3) in 3L, lifts below
 // 2^(128 L - 2) in 2L, the determinant below 2^(320 L - 1) in 5L. As insphereOfIntegers.
 template<int L>
-int insphereOfWide(const Wide<L> (&x)[4][3])
+int insphereOfWide(const Wide<L> (&x)[4][3], const VertexId* ids)
 {
   auto minor = [&x](int i, int j) // x_i y_j - x_j y_i
   { return subtracted(multiplied(x[i][0], x[j][1]), multiplied(x[j][0], x[i][1])); };
@@ -559,7 +593,14 @@ int insphereOfWide(const Wide<L> (&x)[4][3])
       multiplied(x[i][2], x[i][2]));
   const Wide<5 * L> det = added(subtracted(multiplied(lift[3], abc), multiplied(lift[2], dab)),
     subtracted(multiplied(lift[1], cda), multiplied(lift[0], bcd)));
-  return signOfWide(det);
+  const int s = signOfWide(det);
+  if (s != 0 || !ids)
+    return s;
+  // Each minor is below 2^(192 L - 3) in magnitude, so abc - bcd + cda - dab stays below
+  // 2^(192 L - 1) and fits the 3L limbs.
+  const Wide<3 * L> abcd = added(subtracted(abc, bcd), subtracted(cda, dab));
+  return tieBreakFromMinors(
+    signOfWide(abc), signOfWide(bcd), signOfWide(cda), signOfWide(dab), signOfWide(abcd), ids);
 }
 
 // The orientation's sign from differences of L limbs: the determinant below 2^(192 L - 3).
@@ -598,10 +639,11 @@ int insphereWide(const double* a,
   const double* b,
   const double* c,
   const double* d,
-  const double* e)
+  const double* e,
+  const VertexId* ids)
 {
   const double* const points[5] = { a, b, c, d, e };
-  return wideSign<4>(points, [](const auto& x) { return insphereOfWide(x); });
+  return wideSign<4>(points, [ids](const auto& x) { return insphereOfWide(x, ids); });
 }
 
 // The same for orient3d. CAD surfaces' nearly coplanar points whose differences are not
@@ -612,7 +654,12 @@ int orient3dWide(const double* a, const double* b, const double* c, const double
   return wideSign<3>(points, [](const auto& x) { return orient3dOfWide(x); });
 }
 #else
-int insphereWide(const double*, const double*, const double*, const double*, const double*)
+int insphereWide(const double*,
+  const double*,
+  const double*,
+  const double*,
+  const double*,
+  const VertexId*)
 {
   return 0;
 }
@@ -709,13 +756,20 @@ int orient3dExact(const double* a, const double* b, const double* c, const doubl
   return s;
 }
 
-int insphereExact(const double* a,
+namespace
+{
+
+// insphereExact; with `ids`, an exact zero found by the integer stages (lattice, wide) is
+// answered by the symbolic perturbation from their own minors (tieBreakFromMinors), and only
+// the expansions' zero is left to the caller's tie break.
+int insphereExactStages(const double* a,
   const double* b,
   const double* c,
   const double* d,
-  const double* e)
+  const double* e,
+  const VertexId* ids)
 {
-  if (const int code = insphereLattice(a, b, c, d, e))
+  if (const int code = insphereLattice(a, b, c, d, e, ids))
     return decodeLattice(code);
   if (kHasExtendedStage)
   {
@@ -723,7 +777,7 @@ int insphereExact(const double* a,
     if (s != 0)
       return s;
   }
-  if (const int code = insphereWide(a, b, c, d, e))
+  if (const int code = insphereWide(a, b, c, d, e, ids))
     return decodeLattice(code);
   Arena& ar = arena();
   ar.reset();
@@ -761,6 +815,23 @@ int insphereExact(const double* a,
   const int s = sign(sum(ar, left, right));
   ar.releaseExtraBlocks();
   return s;
+}
+
+} // namespace
+
+int insphereExact(const double* a,
+  const double* b,
+  const double* c,
+  const double* d,
+  const double* e)
+{
+  return insphereExactStages(a, b, c, d, e, nullptr);
+}
+
+int insphereExactSoS(const double* const points[5], const VertexId ids[5])
+{
+  const int s = insphereExactStages(points[0], points[1], points[2], points[3], points[4], ids);
+  return s != 0 ? s : insphereTieBreak(points, ids);
 }
 
 int orient2dExact(double ax, double ay, double bx, double by, double cx, double cy)

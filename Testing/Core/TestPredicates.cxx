@@ -2,6 +2,7 @@
 // near-degenerate input perturbed by single ulps, exactly degenerate input (coplanar,
 // cospherical, grids), and the consistency of the symbolic perturbation.
 #include "ExpansionArithmetic.h"
+#include "FilteredPredicates.h"
 #include "Predicates.h"
 
 #include <gmpxx.h>
@@ -520,4 +521,69 @@ TEST(Predicates, SymbolicPerturbationIsAlternatingAndNeverZero)
       ASSERT_EQ(s, reference) << "case " << i;
     } while (std::next_permutation(perm.begin(), perm.end()));
   }
+}
+
+// The exact stages with the symbolic perturbation (insphereExactSoS: the integer stages answer
+// their own zeros from the determinant's minors) against insphereExact followed by the tie
+// break's orientations, on exactly co-spherical points: the corners of boxes (any box's 8
+// corners lie on one sphere) whose coordinates take the 64-bit lattice stage (small
+// integers), the 128-bit one (integers spanning 12-24 bits), the one-limb and the two-limb
+// integer stages (random doubles spanning up to ~53 and ~66 bits), with random ids.
+TEST(Predicates, TieBreakFromIntegerMinorsMatchesOrientations)
+{
+  Random rnd;
+  int zeros = 0;
+  for (int kind = 0; kind < 4; ++kind)
+    for (int i = 0; i < 3000; ++i)
+    {
+      double lo[3], hi[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        switch (kind)
+        {
+          case 0:
+            lo[k] = rnd.integer(-20, 20);
+            hi[k] = lo[k] + rnd.integer(1, 20);
+            break;
+          case 1:
+            lo[k] = rnd.integer(-5, 5);
+            hi[k] = lo[k] + rnd.integer(1, 3) * 4096.0 + rnd.integer(0, 7);
+            break;
+          case 2:
+            lo[k] = rnd.uniform(-1, 1);
+            hi[k] = lo[k] + rnd.uniform(0.01, 1);
+            break;
+          default:
+            lo[k] = std::ldexp(rnd.uniform(-1, 1), -12);
+            hi[k] = rnd.uniform(1, 8);
+        }
+      }
+      std::array<Point, 8> corner;
+      for (int c = 0; c < 8; ++c)
+        corner[c] = { (c & 1) ? hi[0] : lo[0], (c & 2) ? hi[1] : lo[1], (c & 4) ? hi[2] : lo[2] };
+      std::array<int, 8> pick = { 0, 1, 2, 3, 4, 5, 6, 7 };
+      for (int k = 0; k < 5; ++k)
+        std::swap(pick[k], pick[rnd.integer(k, 7)]);
+      const double* p[5];
+      VertexId ids[5];
+      for (int k = 0; k < 5; ++k)
+      {
+        p[k] = corner[pick[k]].data();
+        ids[k] = static_cast<VertexId>(rnd.integer(0, 1000) * 5 + k); // distinct
+      }
+      const int o = predicates::orient3d(p[0], p[1], p[2], p[3]);
+      if (o == 0)
+        continue;
+      if (o < 0)
+      {
+        std::swap(p[0], p[1]);
+        std::swap(ids[0], ids[1]);
+      }
+      const int exact = predicates::insphereExact(p[0], p[1], p[2], p[3], p[4]);
+      zeros += exact == 0;
+      const int expected = exact != 0 ? exact : predicates::insphereTieBreak(p, ids);
+      ASSERT_NE(expected, 0);
+      ASSERT_EQ(predicates::insphereExactSoS(p, ids), expected) << "kind " << kind << " #" << i;
+    }
+  EXPECT_GT(zeros, 4000); // the tie break was exercised, not only non-zero determinants
 }
