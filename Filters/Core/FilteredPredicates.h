@@ -32,6 +32,32 @@ int insphereTieBreak(const double* const points[5], const VertexId ids[5]);
 // integer stages answer their own zeros from the determinant's minors.
 int insphereExactSoS(const double* const points[5], const VertexId ids[5]);
 
+// The symbolic perturbation's answer (insphereTieBreak) when the in-sphere determinant of
+// (a,b,c,d,e) is exactly zero, from the exact signs of the orientations its lift cofactors
+// are made of: abc = orient3d(a,b,c,e), bcd = orient3d(b,c,d,e), cda = orient3d(c,d,a,e),
+// dab = orient3d(d,a,b,e) (the 3x3 minors of the differences from e) and abcd =
+// orient3d(a,b,c,d) = abc - bcd + cda - dab. Replacing point k by e gives C_0 = -bcd,
+// C_1 = cda, C_2 = -dab, C_3 = abc, and C_4 = -abcd; the first non-zero one by decreasing id
+// decides (0 only for a flat a,b,c,d). For the stages that hold those minors exactly.
+// T: int for the minors' signs, or double where the minors themselves are exact.
+template<typename T>
+int tieBreakFromMinors(T abc, T bcd, T cda, T dab, T abcd, const VertexId ids[5])
+{
+  const T cofactor[5] = { -bcd, cda, -dab, abc, -abcd };
+  unsigned taken = 0;
+  for (int step = 0; step < 5; ++step)
+  {
+    int k = -1;
+    for (int i = 0; i < 5; ++i)
+      if (!((taken >> i) & 1u) && (k < 0 || ids[i] > ids[k]))
+        k = i;
+    taken |= 1u << k;
+    if (cofactor[k] != 0)
+      return cofactor[k] > 0 ? 1 : -1;
+  }
+  return 0;
+}
+
 namespace bounds
 {
 constexpr double kEpsilon = 1.1102230246251565e-16; // 2^-53, half an ulp of 1

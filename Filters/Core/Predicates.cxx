@@ -318,29 +318,6 @@ int orient3dLattice(const double* a, const double* b, const double* c, const dou
   return 2 + (det > 0) - (det < 0);
 }
 
-// The symbolic perturbation's answer (insphereTieBreak) when the in-sphere determinant is
-// exactly zero, from the exact signs of its lift cofactors' orientations: abc =
-// orient3d(a,b,c,e), bcd = orient3d(b,c,d,e), cda = orient3d(c,d,a,e), dab = orient3d(d,a,b,e)
-// (the 3x3 minors of the differences from e), and abcd = orient3d(a,b,c,d) = abc - bcd + cda -
-// dab. Replacing point k by e gives C_0 = -bcd, C_1 = cda, C_2 = -dab, C_3 = abc, and C_4 =
-// -abcd; the first non-zero one by decreasing id decides (0 only for a flat a,b,c,d).
-int tieBreakFromMinors(int abc, int bcd, int cda, int dab, int abcd, const VertexId ids[5])
-{
-  const int cofactor[5] = { -bcd, cda, -dab, abc, -abcd };
-  unsigned taken = 0;
-  for (int step = 0; step < 5; ++step)
-  {
-    int k = -1;
-    for (int i = 0; i < 5; ++i)
-      if (!((taken >> i) & 1u) && (k < 0 || ids[i] > ids[k]))
-        k = i;
-    taken |= 1u << k;
-    if (cofactor[k] != 0)
-      return cofactor[k];
-  }
-  return 0;
-}
-
 template<typename Int>
 int signOf(Int x)
 {

@@ -11,6 +11,7 @@
 // their filter on a large share of the tests and pay the exact stages and the tie break.
 #pragma once
 
+#include "FilteredPredicates.h"
 #include "TetMesh.h"
 
 namespace tetmesher
@@ -71,30 +72,12 @@ inline int insphereSoSSmallLattice(const double* coords,
   const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
   if (det != 0)
     return det > 0 ? 1 : -1;
-  // The tie break of insphereTieBreak (Predicates.cxx): the cofactors of the lifts, by
-  // decreasing perturbation id. Each is an orientation of four of the points, which the
-  // minors above already hold exactly: abc = orient3d(a,b,c,e), bcd = orient3d(b,c,d,e),
-  // cda = orient3d(c,d,a,e), dab = orient3d(d,a,b,e); replacing point k by e gives
-  // orient3d(e,b,c,d) = -bcd, orient3d(a,e,c,d) = cda, orient3d(a,b,e,d) = -dab and
-  // orient3d(a,b,c,e) = abc, and -orient3d(a,b,c,d) = -(abc - bcd + cda - dab).
-  const double cofactor[5] = { -bcd, cda, -dab, abc, -(abc - bcd + cda - dab) };
+  // The tie break from the minors, exact here (FilteredPredicates.h).
   VertexId ids[5] = { a, b, c, d, e };
   if (perturbationIds)
     for (VertexId& id : ids)
       id = perturbationIds[id];
-  // Largest id first, by selection: usually the first cofactor is not zero.
-  unsigned taken = 0;
-  for (int step = 0; step < 5; ++step)
-  {
-    int k = -1;
-    for (int i = 0; i < 5; ++i)
-      if (!((taken >> i) & 1u) && (k < 0 || ids[i] > ids[k]))
-        k = i;
-    taken |= 1u << k;
-    if (cofactor[k] != 0)
-      return cofactor[k] > 0 ? 1 : -1;
-  }
-  return 0; // only for a flat (a,b,c,d), which violates the precondition
+  return tieBreakFromMinors(abc, bcd, cda, dab, abc - bcd + cda - dab, ids);
 }
 
 } // namespace predicates
