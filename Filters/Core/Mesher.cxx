@@ -69,6 +69,12 @@ MesherResult meshSurface(const double* points,
   auto stageStart = std::chrono::steady_clock::now();
   TetMesh mesh;
   DelaunayResult delaunay = buildDelaunay(mesh, points, pointCount);
+  if (options.inputCheck)
+  {
+    result.error = options.inputCheck();
+    if (!result.error.empty())
+      return result;
+  }
   result.delaunaySeconds = secondsSince(stageStart);
   if (!delaunay.ok)
   {

@@ -44,6 +44,11 @@ struct MesherOptions
   // many bytes (MemoryBudget.h); <= 0: no memory check. Beyond the 32-bit indices (2^29
   // tets) is always refused.
   double memoryLimitBytes = 0;
+  // Called once the Delaunay of the surface points is built, before its result is looked
+  // at; a non-empty answer is the run's error. The caller's input check that runs beside
+  // the Delaunay (SurfaceMeshing.cxx) waits here, so that a defect it finds is the error
+  // even when the Delaunay or recovery would fail too.
+  std::function<std::string()> inputCheck;
 };
 
 struct MesherResult

@@ -1,0 +1,129 @@
+// The mesh job (SurfaceMeshing.h) runs the input diagnosis on a second thread, beside the
+// size sources and the Delaunay of the surface points. Its verdict must still come first, as
+// when it ran before them: a defective surface is refused by the diagnosis's message even
+// when a later stage (the size array, the Delaunay's duplicate check) would fail too, and
+// the answer is the same on one thread.
+#include "SurfaceGenerators.h"
+#include "SurfaceMeshing.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+using namespace tetmesher;
+namespace gen = tetmesher::testing;
+
+namespace
+{
+
+struct Job
+{
+  gen::Surface surface;
+  std::vector<std::int64_t> cells;
+  SurfaceMeshInput input;
+
+  explicit Job(gen::Surface s)
+    : surface(std::move(s))
+  {
+    cells.resize(static_cast<std::size_t>(surface.triangleCount()));
+    for (std::size_t t = 0; t < cells.size(); ++t)
+      cells[t] = static_cast<std::int64_t>(t);
+    input.points = surface.points.data();
+    input.pointCount = surface.pointCount();
+    input.triangles = surface.triangles.data();
+    input.triangleCount = surface.triangleCount();
+    input.cellOfTriangle = cells.data();
+  }
+};
+
+// The job's answer with the second thread allowed, and with TETMESHER_THREADS=1; both must
+// agree on everything the tests look at.
+SurfaceMeshOutput runBothWays(const Job& job, const SurfaceMeshSettings& settings)
+{
+  unsetenv("TETMESHER_THREADS");
+  SurfaceMeshOutput two = meshSurface(job.input, settings);
+  setenv("TETMESHER_THREADS", "1", 1);
+  const SurfaceMeshOutput one = meshSurface(job.input, settings);
+  unsetenv("TETMESHER_THREADS");
+  EXPECT_EQ(two.ok, one.ok);
+  EXPECT_EQ(two.error, one.error);
+  EXPECT_EQ(two.warnings, one.warnings);
+  EXPECT_EQ(two.cells, one.cells);
+  return two;
+}
+
+bool startsWith(const std::string& text, const std::string& prefix)
+{
+  return text.compare(0, prefix.size(), prefix) == 0;
+}
+
+const char* const kRefused = "the input surface cannot be meshed:";
+
+} // namespace
+
+TEST(SurfaceMeshing, SelfIntersectionIsNamedBeforeAMissingSizeArray)
+{
+  // Two boxes that overlap: intersecting triangle pairs. The size array is missing too; the
+  // size sources run on the main thread while the diagnosis runs, and fail first.
+  gen::Surface s = gen::box({ 0, 0, 0 }, { 1, 1, 1 }, { 2, 2, 2 });
+  s.append(gen::box({ 0.3, 0.3, 0.3 }, { 1.3, 1.3, 1.3 }, { 2, 2, 2 }));
+  Job job(s);
+  job.input.sizeArrayName = "missing";
+  job.input.readSizeArray = [](std::vector<double>&) { return false; };
+  const SurfaceMeshOutput out = runBothWays(job, SurfaceMeshSettings());
+  ASSERT_FALSE(out.ok);
+  EXPECT_TRUE(startsWith(out.error, kRefused)) << out.error;
+  EXPECT_NE(out.error.find("intersecting triangle pair"), std::string::npos) << out.error;
+  EXPECT_EQ(out.error.find("SizeArrayName"), std::string::npos) << out.error;
+}
+
+TEST(SurfaceMeshing, CoincidentPointsAreNamedByTheDiagnosisNotTheDelaunay)
+{
+  // A cube whose first triangle uses a copy of its first point: the Delaunay of the points
+  // finds the duplicate too ("points ... coincide"), after the diagnosis has started.
+  gen::Surface s = gen::cube(2);
+  const std::int32_t first = s.triangles[0];
+  const std::int32_t copy = s.addPoint(s.points[3 * static_cast<std::size_t>(first)],
+    s.points[3 * static_cast<std::size_t>(first) + 1],
+    s.points[3 * static_cast<std::size_t>(first) + 2]);
+  s.triangles[0] = copy;
+  Job job(s);
+  SurfaceMeshSettings settings;
+  settings.refine = false;
+  const SurfaceMeshOutput out = runBothWays(job, settings);
+  ASSERT_FALSE(out.ok);
+  EXPECT_TRUE(startsWith(out.error, kRefused)) << out.error;
+  EXPECT_NE(out.error.find("coincident points"), std::string::npos) << out.error;
+}
+
+TEST(SurfaceMeshing, AGoodSurfaceKeepsTheDiagnosisWarnings)
+{
+  // An unused point is a warning, not a refusal: the mesh is made and the warning kept.
+  gen::Surface s = gen::cube(2);
+  s.addPoint(5, 5, 5);
+  Job job(s);
+  const SurfaceMeshOutput out = runBothWays(job, SurfaceMeshSettings());
+  ASSERT_TRUE(out.ok) << out.error;
+  EXPECT_NE(out.warnings.find("unused point"), std::string::npos) << out.warnings;
+  EXPECT_FALSE(out.diagnosis.defects.empty());
+  // runBothWays returns the two-thread answer, whose diagnosis ran beside the Delaunay.
+  EXPECT_NE(out.stageTimings.find("(input diagnosis, beside the above)"), std::string::npos)
+    << out.stageTimings;
+  EXPECT_FALSE(out.cells.empty());
+}
+
+TEST(SurfaceMeshing, NoDiagnosisWhenTheCheckIsOff)
+{
+  gen::Surface s = gen::cube(2);
+  s.addPoint(5, 5, 5);
+  Job job(s);
+  SurfaceMeshSettings settings;
+  settings.checkInput = false;
+  const SurfaceMeshOutput out = runBothWays(job, settings);
+  ASSERT_TRUE(out.ok) << out.error;
+  EXPECT_TRUE(out.warnings.empty()) << out.warnings;
+  EXPECT_TRUE(out.diagnosis.defects.empty());
+  EXPECT_EQ(out.stageTimings.find("(input diagnosis"), std::string::npos) << out.stageTimings;
+}
