@@ -83,7 +83,8 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
       diagnosed = true;
       if (diagnosisFailure)
         std::rethrow_exception(diagnosisFailure);
-      if (!out.diagnosis.defects.empty())
+      // Warnings of a surface that is meshed; a refused one has its defects as the error.
+      if (out.diagnosis.ok() && !out.diagnosis.defects.empty())
         out.warnings = out.diagnosis.summary(10) + idNote;
     }
     if (!settings.checkInput || out.diagnosis.ok())
