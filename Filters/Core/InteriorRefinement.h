@@ -74,7 +74,7 @@ struct RefinementOptions
   // Lattice rounds and edge-splitting rounds of at least this many points are inserted in two
   // halves of space side by side, on two threads where the machine has two CPUs (the mesh is
   // the same on one); fewer points, and 0, in one sequence.
-  int halvesMinPoints = 16384;
+  int halvesMinPoints = 4096;
   // Refuse (ok = false, before inserting any point) when the estimated memory of the refined
   // mesh exceeds this many bytes (MemoryBudget.h); <= 0: no memory check. Meshes beyond the
   // 32-bit indices (2^29 tets) are always refused. The VTK filter and the CLI pass the memory

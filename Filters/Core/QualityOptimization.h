@@ -98,7 +98,7 @@ struct OptimizationOptions
   // A pass with at least this many tets below the target works in two halves of space side
   // by side, on two threads where the machine has two CPUs (the mesh is the same on one),
   // then works what needs both halves in one sequence; fewer, and 0, in one sequence.
-  int halvesMinBadTets = 2048;
+  int halvesMinBadTets = 1024;
 };
 
 struct OptimizationResult
