@@ -1390,6 +1390,14 @@ DelaunayResult buildDelaunay(TetMesh& mesh,
 
   InsertionWorkspace ws;
   ws.perturbationIds = originalId.data();
+  std::vector<VertexId> rankedId;
+  if (options.perturbationRank)
+  {
+    rankedId.resize(originalId.size());
+    for (std::size_t i = 0; i < originalId.size(); ++i)
+      rankedId[i] = originalId[i] < n ? options.perturbationRank[originalId[i]] : originalId[i];
+    ws.perturbationIds = rankedId.data();
+  }
   if (options.smallLatticePredicates && smallLatticeBits(points, n, lo) > 0)
     ws.smallLatticeVertices = n;
   TetId hint = box[0];

@@ -28,6 +28,10 @@ struct DelaunayOptions
   // instead of the filtered predicates with their exact fallback; the answers, hence the
   // mesh, are the same. false: the general predicates always (for tests).
   bool smallLatticePredicates = true;
+  // The symbolic perturbation's order of the input points: point v is perturbed as if its id
+  // were perturbationRank[v] (a permutation of 0..n-1; nullptr: its id). Only exact ties
+  // depend on it (PerturbationOrder.h); the mesh is then Delaunay for that order.
+  const VertexId* perturbationRank = nullptr;
 };
 
 struct DelaunayResult

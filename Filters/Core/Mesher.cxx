@@ -4,6 +4,7 @@
 #include "Delaunay.h"
 #include "FlatTetRemoval.h"
 #include "MemoryBudget.h"
+#include "PerturbationOrder.h"
 #include "Regions.h"
 #include "SteinerRemoval.h"
 #include "SurfaceDiagnosis.h"
@@ -68,7 +69,12 @@ MesherResult meshSurface(const double* points,
   // Stage 1: Delaunay of the input points.
   auto stageStart = std::chrono::steady_clock::now();
   TetMesh mesh;
-  DelaunayResult delaunay = buildDelaunay(mesh, points, pointCount);
+  // Ties of co-circular planar quads broken towards the input's diagonals: fewer edges for
+  // recovery to flip in, and fewer Steiner points where flips cannot.
+  const PerturbationOrder order = perturbationOrderForSurface(points, surface);
+  DelaunayOptions delaunayOptions;
+  delaunayOptions.perturbationRank = order.rank.empty() ? nullptr : order.rank.data();
+  DelaunayResult delaunay = buildDelaunay(mesh, points, pointCount, delaunayOptions);
   if (options.inputCheck)
   {
     result.error = options.inputCheck();

@@ -90,6 +90,7 @@ std::string buildSurfaceInput(const double* points,
     }
     out.edges.push_back({ a, b });
     out.edgeFirstTriangle.push_back(edgeUses[i].second);
+    out.edgeSecondTriangle.push_back(j - i == 2 ? edgeUses[i + 1].second : -1);
     i = j;
   }
   return std::string();

@@ -22,6 +22,8 @@ struct SurfaceInput
   std::vector<std::array<VertexId, 3>> triangles;
   std::vector<std::array<VertexId, 2>> edges;  // unique, (a<b), sorted
   std::vector<std::int32_t> edgeFirstTriangle; // a triangle having each edge
+  // The other triangle of an edge that has exactly two, else -1 (an interface edge).
+  std::vector<std::int32_t> edgeSecondTriangle;
 };
 
 // Key of an unordered vertex pair / triple, for hashing.
