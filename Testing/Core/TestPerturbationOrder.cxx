@@ -219,21 +219,25 @@ TEST(PerturbationOrder, RandomDiagonalBoxKeepsEveryInputEdge)
 
 TEST(PerturbationOrder, RankedMeshIsTheDelaunayOfTheRenumberedPoints)
 {
-  // perturbationRank must act exactly as renumbering the points by rank: the same tets.
-  const Points s = randomDiagonalBox(5, 4, 3, 7);
-  const tetmesher::PerturbationOrder order =
-    tetmesher::perturbationOrderForSurface(s.coords.data(), surfaceOf(s));
-  ASSERT_FALSE(order.rank.empty());
-  Points renumbered = s;
-  std::vector<VertexId> byRank(s.count());
-  for (VertexId v = 0; v < s.count(); ++v)
+  // perturbationRank must act exactly as renumbering the points by rank: the same tets. The
+  // second box has over 16384 points, so its last round goes in two halves of space.
+  for (const std::array<int, 3>& cells : { std::array<int, 3>{ 5, 4, 3 }, { 80, 80, 20 } })
   {
-    byRank[order.rank[v]] = v;
-    for (int k = 0; k < 3; ++k)
-      renumbered.coords[3 * order.rank[v] + k] = s.coords[3 * v + k];
+    const Points s = randomDiagonalBox(cells[0], cells[1], cells[2], 7);
+    const tetmesher::PerturbationOrder order =
+      tetmesher::perturbationOrderForSurface(s.coords.data(), surfaceOf(s));
+    ASSERT_FALSE(order.rank.empty());
+    Points renumbered = s;
+    std::vector<VertexId> byRank(s.count());
+    for (VertexId v = 0; v < s.count(); ++v)
+    {
+      byRank[order.rank[v]] = v;
+      for (int k = 0; k < 3; ++k)
+        renumbered.coords[3 * order.rank[v] + k] = s.coords[3 * v + k];
+    }
+    const auto ranked = sortedTets(delaunayOf(s, order.rank.data()), {});
+    const auto plain = sortedTets(delaunayOf(renumbered, nullptr), byRank);
+    EXPECT_EQ(ranked, plain) << s.count() << " points";
+    EXPECT_NE(ranked, sortedTets(delaunayOf(s, nullptr), {})) << s.count() << " points";
   }
-  const auto ranked = sortedTets(delaunayOf(s, order.rank.data()), {});
-  const auto plain = sortedTets(delaunayOf(renumbered, nullptr), byRank);
-  EXPECT_EQ(ranked, plain);
-  EXPECT_NE(ranked, sortedTets(delaunayOf(s, nullptr), {}));
 }
