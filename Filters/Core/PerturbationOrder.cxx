@@ -3,7 +3,6 @@
 #include "Predicates.h"
 
 #include <cmath>
-#include <functional>
 #include <queue>
 #include <utility>
 
