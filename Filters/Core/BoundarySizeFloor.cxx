@@ -33,6 +33,8 @@ BoundarySizeFloor::BoundarySizeFloor(const double* points,
   if (!(slope > 0) || !std::isfinite(slope))
     return;
   std::vector<double> reaches;
+  faces_.reserve(faceSize.size());
+  reaches.reserve(faceSize.size());
   for (std::size_t id = 0; id < faceSize.size(); ++id)
   {
     const double s = faceSize[id], base = faceBase[id];
@@ -147,32 +149,39 @@ BoundarySizeFloor::BoundarySizeFloor(const double* points,
             }
       }
     });
-  std::vector<Listing> listings = std::move(halfListings[0]);
-  listings.insert(listings.end(), halfListings[1].begin(), halfListings[1].end());
-  std::vector<Listing>().swap(halfListings[1]);
   large_ = std::move(halfLarge[0]);
   large_.insert(large_.end(), halfLarge[1].begin(), halfLarge[1].end());
-  std::vector<std::int32_t> cellOfListing(listings.size());
+  // The two halves' listings are read in turn, as if end to end, rather than joined: copying
+  // them took a third of the construction (fandisk at h = 0.0103: 15 MB written anew).
+  // Each listing's key is overwritten by its cell's dense index.
   std::int32_t cellCount = 0;
-  for (std::size_t n = 0; n < listings.size(); ++n)
+  for (std::vector<Listing>& listings : halfListings)
   {
-    if (const std::int32_t* known = cellIndex_.find(listings[n].key))
-      cellOfListing[n] = *known;
-    else
+    for (Listing& listing : listings)
     {
-      cellIndex_.insert(listings[n].key, cellCount);
-      cellOfListing[n] = cellCount++;
+      if (const std::int32_t* known = cellIndex_.find(listing.key))
+        listing.key = static_cast<std::uint64_t>(*known);
+      else
+      {
+        cellIndex_.insert(listing.key, cellCount);
+        listing.key = static_cast<std::uint64_t>(cellCount++);
+      }
     }
   }
   cellStart_.assign(static_cast<std::size_t>(cellCount) + 1, 0);
-  for (const std::int32_t c : cellOfListing)
-    ++cellStart_[static_cast<std::size_t>(c) + 1];
+  for (const std::vector<Listing>& listings : halfListings)
+    for (const Listing& listing : listings)
+      ++cellStart_[listing.key + 1];
   for (std::size_t c = 0; c < static_cast<std::size_t>(cellCount); ++c)
     cellStart_[c + 1] += cellStart_[c];
-  entries_.resize(listings.size());
+  entries_.resize(cellStart_.back());
   std::vector<std::size_t> fill(cellStart_.begin(), cellStart_.end() - 1);
-  for (std::size_t n = 0; n < listings.size(); ++n)
-    entries_[fill[static_cast<std::size_t>(cellOfListing[n])]++] = listings[n].entry;
+  for (std::vector<Listing>& listings : halfListings)
+  {
+    for (const Listing& listing : listings)
+      entries_[fill[listing.key]++] = listing.entry;
+    std::vector<Listing>().swap(listings);
+  }
   const std::size_t cells = static_cast<std::size_t>(cellCount);
   splitAt(twoThreads,
     cells / 2,
