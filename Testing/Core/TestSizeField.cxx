@@ -204,6 +204,66 @@ TEST(BoundarySizeFloor, FallsAtItsSlopeFromEachFace)
   EXPECT_TRUE(BoundarySizeFloor(points, corners, { 2.0, 0.4 }, { 0.5, 0.5 }, 0.0).empty());
 }
 
+TEST(BoundarySizeFloor, IsTheLargestConeOverTheFaces)
+{
+  // 3000 random triangles (enough for the construction's two halves) of random sizes and
+  // bases in the unit cube; the cells' answer equals the brute-force maximum of
+  // s_F - slope d(p, F) over the faces within their reach (and atLeast where that is larger)
+  // at 3000 random points inside and around.
+  constexpr int kFaces = 3000;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(0, 1), around(-0.3, 1.3), size(0.02, 0.3);
+  std::vector<double> points, sizes, bases;
+  std::vector<std::int32_t> corners;
+  for (int f = 0; f < kFaces; ++f)
+  {
+    const double c[3] = { unit(rng), unit(rng), unit(rng) };
+    for (int k = 0; k < 3; ++k)
+    {
+      for (int a = 0; a < 3; ++a)
+        points.push_back(c[a] + 0.05 * (unit(rng) - 0.5));
+      corners.push_back(static_cast<std::int32_t>(3 * f + k));
+    }
+    sizes.push_back(size(rng));
+    bases.push_back(size(rng)); // about half the faces reach nothing (size <= base)
+  }
+  const double slope = 2;
+  const BoundarySizeFloor floor(points.data(), corners, sizes, bases, slope);
+  ASSERT_GT(floor.faceCount(), 1000u);
+  ASSERT_LT(floor.faceCount(), 2000u);
+  auto bruteForce = [&](const double* p)
+  {
+    double largest = 0;
+    for (int f = 0; f < kFaces; ++f)
+    {
+      const double s = sizes[static_cast<std::size_t>(f)],
+                   base = bases[static_cast<std::size_t>(f)];
+      if (!(s > base))
+        continue;
+      const double* x = &points[9 * static_cast<std::size_t>(f)];
+      const double value =
+        s - slope * std::sqrt(geometry::pointTriangleDistanceSquared(p, x, x + 3, x + 6));
+      if (value > s - slope * ((s - base) / slope))
+        largest = std::max(largest, value);
+    }
+    return largest;
+  };
+  int reached = 0, raised = 0;
+  for (int i = 0; i < 3000; ++i)
+  {
+    const double p[3] = { around(rng), around(rng), around(rng) };
+    const double expected = bruteForce(p);
+    ASSERT_EQ(floor.at(p), expected) << i;
+    reached += expected > 0;
+    const double atLeast = 0.15;
+    raised += expected > atLeast;
+    ASSERT_EQ(floor.at(p, atLeast), std::max(expected, atLeast)) << i;
+  }
+  EXPECT_GT(reached, 300); // points inside and outside every reach occur
+  EXPECT_LT(reached, 2900);
+  EXPECT_GT(raised, 50); // both sides of atLeast occur
+}
+
 TEST(BoundarySizeCeiling, IsTheSmallestConeOverTheFaces)
 {
   // 400 random triangles of random sizes in the unit cube; the hierarchy's answer equals the
