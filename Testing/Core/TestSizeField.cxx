@@ -93,6 +93,23 @@ void path(int n,
     off.push_back(static_cast<std::int32_t>(adj.size()));
   }
 }
+
+// Appends triangle f: three corners within `spread` of a random point of the unit cube.
+void appendRandomTriangle(std::mt19937_64& rng,
+  std::uniform_real_distribution<double>& unit,
+  double spread,
+  int f,
+  std::vector<double>& points,
+  std::vector<std::int32_t>& corners)
+{
+  const double c[3] = { unit(rng), unit(rng), unit(rng) };
+  for (int k = 0; k < 3; ++k)
+  {
+    for (int a = 0; a < 3; ++a)
+      points.push_back(c[a] + spread * (unit(rng) - 0.5));
+    corners.push_back(static_cast<std::int32_t>(3 * f + k));
+  }
+}
 } // namespace
 
 TEST(SizeField, GradationBoundsGrowthAlongEdges)
@@ -217,13 +234,7 @@ TEST(BoundarySizeFloor, IsTheLargestConeOverTheFaces)
   std::vector<std::int32_t> corners;
   for (int f = 0; f < kFaces; ++f)
   {
-    const double c[3] = { unit(rng), unit(rng), unit(rng) };
-    for (int k = 0; k < 3; ++k)
-    {
-      for (int a = 0; a < 3; ++a)
-        points.push_back(c[a] + 0.05 * (unit(rng) - 0.5));
-      corners.push_back(static_cast<std::int32_t>(3 * f + k));
-    }
+    appendRandomTriangle(rng, unit, 0.05, f, points, corners);
     sizes.push_back(size(rng));
     bases.push_back(size(rng)); // about half the faces reach nothing (size <= base)
   }
@@ -276,13 +287,7 @@ TEST(BoundarySizeCeiling, IsTheSmallestConeOverTheFaces)
   std::vector<double> sizes;
   for (int f = 0; f < 400; ++f)
   {
-    const double c[3] = { unit(rng), unit(rng), unit(rng) };
-    for (int k = 0; k < 3; ++k)
-    {
-      for (int a = 0; a < 3; ++a)
-        points.push_back(c[a] + 0.1 * (unit(rng) - 0.5));
-      corners.push_back(static_cast<std::int32_t>(3 * f + k));
-    }
+    appendRandomTriangle(rng, unit, 0.1, f, points, corners);
     sizes.push_back(size(rng));
   }
   sizes[5] = 0; // left out: not positive
