@@ -62,9 +62,9 @@ vtk() {
 }
 
 # The kernel and the refinement insert large rounds, and the optimiser works large passes, on two
-# threads that must never touch the same tets; the mesh job diagnoses the input beside the
-# Delaunay (whose two halves share the perturbation order): any data race fails the test that
-# hit it.
+# threads that must never touch the same tets; the size floor's index is built in halves; the
+# mesh job diagnoses the input beside the Delaunay (whose two halves share the perturbation
+# order): any data race fails the test that hit it.
 threads() {
   local b=build-tsan
   phase "configure core (TSan)" cmake -S . -B $b -DTETMESHER_CORE_ONLY=ON \
@@ -72,9 +72,9 @@ threads() {
     -DCMAKE_EXE_LINKER_FLAGS=-fsanitize=thread >/dev/null
   phase "build kernel tests (TSan)" cmake --build $b -j"$jobs" --target CoreTestDelaunayHalves \
     CoreTestLatticeHalves CoreTestOptimizerHalves CoreTestEdgeGraph \
-    CoreTestDelaunay CoreTestSurfaceMeshing CoreTestPerturbationOrder
+    CoreTestDelaunay CoreTestSurfaceMeshing CoreTestPerturbationOrder CoreTestSizeField
   phase "two-thread tests (TSan)" ctest --test-dir $b \
-    --output-on-failure -j1 -R 'Core\.Test(Delaunay|LatticeHalves|OptimizerHalves|EdgeGraph|SurfaceMeshing|PerturbationOrder)' ${CTEST_ARGS:-}
+    --output-on-failure -j1 -R 'Core\.Test(Delaunay|LatticeHalves|OptimizerHalves|EdgeGraph|SurfaceMeshing|PerturbationOrder|SizeField)' ${CTEST_ARGS:-}
 }
 
 case $what in
