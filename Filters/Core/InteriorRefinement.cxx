@@ -121,16 +121,31 @@ void starOf(TetMesh& mesh, TetId t, VertexId v, std::vector<TetId>& star, bool m
 // during refinement), so it looks at ~2-3 cells per axis and ~1 vertex per cell. (Cells as
 // wide as the largest radius of the class, 3x3x3 per query, made a query test ~250 vertices
 // through a linked list: 10% of a 160k-tet run.) The answer does not depend on the cell size.
+// A class whose cells over the box [origin, top] are few (at most kDenseCellsPerVertex per
+// expected vertex, or kMinDenseCells) keeps them in a plain array instead of the hash grid:
+// an interior query reads 8 cells of its class, twice in the halves (the shared grid and the
+// side's own), and the hash probes were a third of the lattice insertion's proximity tests.
+// Cells outside the box are clamped to its border cells, which only adds vertices to test.
 class ProximityGrid
 {
 public:
-  // expectedVertices: room reserved (not touched) for the vertices to come.
-  ProximityGrid(double base, double ratio, const double* origin, std::size_t expectedVertices)
+  // expectedVertices: room reserved (not touched) for the vertices to come. [origin, top]:
+  // the box where vertices are expected (others are accepted too).
+  ProximityGrid(double base,
+    double ratio,
+    const double* origin,
+    const double* top,
+    std::size_t expectedVertices)
     : base_(base)
     , ratio_(ratio)
+    , maxDenseCells_(std::max<double>(kMinDenseCells,
+        kDenseCellsPerVertex * static_cast<double>(expectedVertices)))
   {
     for (int k = 0; k < 3; ++k)
+    {
       origin_[k] = origin[k];
+      top_[k] = std::max(top[k], origin[k]);
+    }
     nodes_.reserve(expectedVertices);
   }
 
@@ -141,6 +156,14 @@ public:
     {
       Level l;
       l.cell = 2 * ratio_ * base_ * std::ldexp(1.0, static_cast<int>(levels_.size()));
+      double cells = 1;
+      for (int a = 0; a < 3; ++a)
+      {
+        l.dims[a] = index(l, top_[a], a) + 1;
+        cells *= static_cast<double>(l.dims[a]);
+      }
+      if (cells <= maxDenseCells_)
+        l.dense.assign(static_cast<std::size_t>(cells), -1);
       levels_.push_back(std::move(l));
     }
     Level& l = levels_[level];
@@ -151,9 +174,16 @@ public:
       l.occupiedLo[a] = std::min(l.occupiedLo[a], cell[a]);
       l.occupiedHi[a] = std::max(l.occupiedHi[a], cell[a]);
     }
+    const auto node = static_cast<std::int32_t>(nodes_.size());
+    if (!l.dense.empty())
+    {
+      std::int32_t& head = l.dense[denseSlot(l, cell[0], cell[1], cell[2])];
+      nodes_.push_back({ { p[0], p[1], p[2] }, v, head, level });
+      head = node;
+      return;
+    }
     l.blocks.insert(cellKey(block(cell[0]), block(cell[1]), block(cell[2])));
     const std::uint64_t key = cellKey(cell[0], cell[1], cell[2]);
-    const auto node = static_cast<std::int32_t>(nodes_.size());
     std::int32_t next = -1;
     if (std::int32_t* head = l.head.find(key))
     {
@@ -194,6 +224,22 @@ public:
             return true;
         continue;
       }
+      if (!l.dense.empty())
+      {
+        const std::int64_t i0 = clampCell(l, c0[0], 0), i1 = clampCell(l, c1[0], 0);
+        const std::int64_t j0 = clampCell(l, c0[1], 1), j1 = clampCell(l, c1[1], 1);
+        const std::int64_t k0 = clampCell(l, c0[2], 2), k1 = clampCell(l, c1[2], 2);
+        for (std::int64_t i = i0; i <= i1; ++i)
+          for (std::int64_t j = j0; j <= j1; ++j)
+          {
+            const std::int32_t* row = &l.dense[denseSlot(l, i, j, 0)];
+            for (std::int64_t k = k0; k <= k1; ++k)
+              for (std::int32_t n = row[k]; n >= 0; n = nodes_[n].next)
+                if (isNear(p, h, nodes_[n], sizes))
+                  return true;
+          }
+        continue;
+      }
       // Most classes have no vertex near p (femur.off: 88 cell probes per query, 12 vertices
       // found): the blocks of 4x4x4 cells (1 or 2 per axis here) rule them out first.
       bool occupied = false;
@@ -223,6 +269,10 @@ private:
   {
     double cell = 0;
     double maxSize = 0; // largest size given to a vertex of the class
+    // The cells over [origin, top] per axis, and each one's latest node (-1: none) when the
+    // class keeps them in an array; else (empty) the hash tables below.
+    std::int64_t dims[3] = { 0, 0, 0 };
+    std::vector<std::int32_t> dense;
     EpochHashTable<std::uint64_t, std::int32_t, MixHash64> head;   // a cell's latest node
     EpochHashTable<std::uint64_t, std::uint8_t, MixHash64> blocks; // blocks holding a vertex
     // The box of the cells holding the class's vertices (empty: lo > hi).
@@ -265,12 +315,27 @@ private:
     { return static_cast<std::uint64_t>(x + (1 << 20)) & ((1u << 21) - 1); };
     return (part(i) << 42) | (part(j) << 21) | part(k);
   }
+  // A cell index of the array: clamped to the box's cells (monotone, so a range of cells
+  // clamped holds every vertex of the range).
+  static std::int64_t clampCell(const Level& l, std::int64_t c, int a)
+  {
+    return std::min(std::max(c, std::int64_t(0)), l.dims[a] - 1);
+  }
+  static std::size_t denseSlot(const Level& l, std::int64_t i, std::int64_t j, std::int64_t k)
+  {
+    return static_cast<std::size_t>(
+      (clampCell(l, i, 0) * l.dims[1] + clampCell(l, j, 1)) * l.dims[2] + clampCell(l, k, 2));
+  }
   // The block of 4 cells (per axis) that holds cell c (floor division: c may be negative).
   static std::int64_t block(std::int64_t c) { return c >= 0 ? c / 4 : -((3 - c) / 4); }
 
+  static constexpr double kMinDenseCells = 1 << 18;
+  static constexpr double kDenseCellsPerVertex = 2;
   double base_;
   double ratio_;
+  double maxDenseCells_;
   double origin_[3];
+  double top_[3];
   std::vector<Level> levels_;
   std::vector<Node> nodes_;
 };
@@ -757,6 +822,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   ProximityGrid grid(minH,
     std::max(options.minPointDistance, 1e-3),
     lo,
+    hi,
     static_cast<std::size_t>(initialCount + std::min(result.estimatedPoints, 1.0e7)));
   if (checkProximity)
     for (VertexId v = 0; v < initialCount; ++v)
@@ -986,8 +1052,14 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       mesh, axis, split, phase.side[0].items.size(), phase.side[1].items.size());
     region.resize(static_cast<std::size_t>(mesh.tetCapacity()), -1);
     if (checkProximity)
-      for (HalfState& me : phase.side)
-        me.grid = std::make_unique<ProximityGrid>(minH, proximityRatio, lo, me.items.size());
+      for (int k = 0; k < 2; ++k)
+      {
+        // The side's half of the box, where its points are.
+        double sideLo[3] = { lo[0], lo[1], lo[2] }, sideHi[3] = { hi[0], hi[1], hi[2] };
+        (k == 0 ? sideHi : sideLo)[axis] = std::min(std::max(split, lo[axis]), hi[axis]);
+        phase.side[k].grid = std::make_unique<ProximityGrid>(
+          minH, proximityRatio, sideLo, sideHi, phase.side[k].items.size());
+      }
   };
   // refused() for a side.
   auto refusedOnSide = [&](HalfState& me, const double* p, double hp, double boundaryDistance)
