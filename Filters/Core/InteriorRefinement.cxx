@@ -130,16 +130,19 @@ class ProximityGrid
 {
 public:
   // expectedVertices: room reserved (not touched) for the vertices to come. [origin, top]:
-  // the box where vertices are expected (others are accepted too).
+  // the box where vertices are expected (others are accepted too). cellArrays: false for
+  // hash grids only.
   ProximityGrid(double base,
     double ratio,
     const double* origin,
     const double* top,
-    std::size_t expectedVertices)
+    std::size_t expectedVertices,
+    bool cellArrays)
     : base_(base)
     , ratio_(ratio)
-    , maxDenseCells_(std::max<double>(kMinDenseCells,
-        kDenseCellsPerVertex * static_cast<double>(expectedVertices)))
+    , maxDenseCells_(cellArrays ? std::max<double>(kMinDenseCells,
+                                    kDenseCellsPerVertex * static_cast<double>(expectedVertices))
+                                : 0.0)
   {
     for (int k = 0; k < 3; ++k)
     {
@@ -823,7 +826,8 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     std::max(options.minPointDistance, 1e-3),
     lo,
     hi,
-    static_cast<std::size_t>(initialCount + std::min(result.estimatedPoints, 1.0e7)));
+    static_cast<std::size_t>(initialCount + std::min(result.estimatedPoints, 1.0e7)),
+    options.proximityCellArrays);
   if (checkProximity)
     for (VertexId v = 0; v < initialCount; ++v)
       if (vertexTet[v] >= 0)
@@ -1057,8 +1061,12 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
         // The side's half of the box, where its points are.
         double sideLo[3] = { lo[0], lo[1], lo[2] }, sideHi[3] = { hi[0], hi[1], hi[2] };
         (k == 0 ? sideHi : sideLo)[axis] = std::min(std::max(split, lo[axis]), hi[axis]);
-        phase.side[k].grid = std::make_unique<ProximityGrid>(
-          minH, proximityRatio, sideLo, sideHi, phase.side[k].items.size());
+        phase.side[k].grid = std::make_unique<ProximityGrid>(minH,
+          proximityRatio,
+          sideLo,
+          sideHi,
+          phase.side[k].items.size(),
+          options.proximityCellArrays);
       }
   };
   // refused() for a side.

@@ -27,6 +27,10 @@ struct RefinementOptions
   double minPointDistance = 0.7;
   // ... or when a constrained face (boundary, interface) near it is closer than this.
   double minBoundaryDistance = 0.5;
+  // The vertices for the test above are kept in grids of cells per size class: in arrays
+  // where a class's cells are few (at most 2 per expected vertex, or 2^18), else in hash
+  // tables. false: hash tables only (for tests: the answers, hence the mesh, are the same).
+  bool proximityCellArrays = true;
   // The split point moves along the edge by up to +-splitJitter/2 of its length (deterministic,
   // hashed from the edge's vertex ids), so that grid-like input does not produce lattice points
   // (exactly coplanar groups that rounding turns into flat tets). 0: the metric midpoint.

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <limits>
 #include <map>
 #include <set>
 #include <unordered_set>
@@ -650,6 +651,54 @@ TEST(InteriorRefinement, SizeVaryingTenfoldAcrossTheSurface)
   EXPECT_LE(excess, 1 + 1e-9);
   std::vector<int> sign(static_cast<std::size_t>(s.surface.triangleCount()), 1);
   EXPECT_EQ(checkRefined(s, h, before, sign), "");
+}
+
+// The proximity test keeps a size class's cells in arrays or in hash tables: the answers, hence
+// the mesh, are the same. And no new vertex is nearer another vertex than minPointDistance in
+// units of h (by brute force over every pair), through both the shared grid and the halves'
+// own ones (halves from 256 points here), in sizes of several classes (h varies 10x).
+TEST(InteriorRefinement, ProximityGridsAgreeAndKeepNewPointsApart)
+{
+  Case s[2];
+  std::vector<double> h[2];
+  VertexId initial = 0;
+  RefinementOptions options;
+  options.halvesMinPoints = 256;
+  for (int k = 0; k < 2; ++k)
+  {
+    s[k].surface = invertedSphere(3);
+    ASSERT_TRUE(prepare(s[k]));
+    initial = s[k].mesh.mesh.vertexCount();
+    h[k] = boundaryEdgeSizes(s[k].surface.points.data(),
+      s[k].surface.pointCount(),
+      s[k].surface.triangles.data(),
+      s[k].surface.triangleCount());
+    options.proximityCellArrays = k == 0;
+    const RefinementResult r = refineInterior(s[k].mesh, h[k], options);
+    ASSERT_TRUE(r.ok) << r.error;
+    EXPECT_GT(r.latticeHalvesPoints + r.splitHalvesPoints, 0);
+    EXPECT_GT(r.rejectedNearVertex, 0); // the test refused points: it decided something
+  }
+  const TetMesh& m = s[0].mesh.mesh;
+  ASSERT_GT(m.vertexCount(), initial);
+  EXPECT_TRUE(m.coords == s[1].mesh.mesh.coords) << "the points differ";
+  EXPECT_TRUE(m.tets == s[1].mesh.mesh.tets) << "the tets differ";
+  EXPECT_TRUE(h[0] == h[1]) << "the sizes differ";
+  double closest = std::numeric_limits<double>::infinity();
+  for (VertexId b = initial; b < m.vertexCount(); ++b)
+    for (VertexId a = 0; a < b; ++a)
+    {
+      const double* p = m.point(a);
+      const double* q = m.point(b);
+      const double d = std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+        (p[2] - q[2]) * (p[2] - q[2]));
+      closest = std::min(closest, d * 0.5 * (1 / h[0][a] + 1 / h[0][b]));
+    }
+  std::printf("[proximity] %d new vertices, the nearest pair %.4f h apart (at least %.2f)\n",
+    m.vertexCount() - initial,
+    closest,
+    options.minPointDistance);
+  EXPECT_GE(closest, options.minPointDistance * (1 - 1e-12));
 }
 
 TEST(InteriorRefinement, LatticeOnCosphericalUvSphere)
