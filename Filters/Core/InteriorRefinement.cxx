@@ -124,7 +124,8 @@ void starOf(TetMesh& mesh, TetId t, VertexId v, std::vector<TetId>& star, bool m
 // A class whose cells over the box [origin, top] are few (at most kDenseCellsPerVertex per
 // expected vertex, or kMinDenseCells) keeps them in a plain array instead of the hash grid:
 // an interior query reads 8 cells of its class, twice in the halves (the shared grid and the
-// side's own), and the hash probes were a third of the lattice insertion's proximity tests.
+// side's own), and with hash tables alone the queries were 7% of fandisk at h/2's samples (4%
+// with the arrays).
 // Cells outside the box are clamped to its border cells, which only adds vertices to test.
 class ProximityGrid
 {
