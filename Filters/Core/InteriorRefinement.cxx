@@ -236,7 +236,9 @@ public:
         for (std::int64_t i = i0; i <= i1; ++i)
           for (std::int64_t j = j0; j <= j1; ++j)
           {
-            const std::int32_t* row = &l.dense[denseSlot(l, i, j, 0)];
+            // i and j are clamped already: the row's first cell directly.
+            const std::int32_t* row =
+              &l.dense[static_cast<std::size_t>((i * l.dims[1] + j) * l.dims[2])];
             for (std::int64_t k = k0; k <= k1; ++k)
               for (std::int32_t n = row[k]; n >= 0; n = nodes_[n].next)
                 if (isNear(p, h, nodes_[n], sizes))
