@@ -86,7 +86,8 @@ BoundarySizeCeiling::BoundarySizeCeiling(const double* points,
       cellOrigin_[a] = box[a];
       cellDims_[a] = static_cast<std::int32_t>(std::floor(extent[a] / cellSize_) + 1);
     }
-    cellBound_.assign(static_cast<std::size_t>(cellCount()), 0.0);
+    // Value-initialized: every entry 0.
+    cellBound_ = std::vector<std::atomic<double>>(static_cast<std::size_t>(cellCount()));
   }
 }
 
@@ -208,9 +209,13 @@ double BoundarySizeCeiling::at(const double* p, double atMost) const
     }
     if (inside)
     {
-      double& bound = cellBound_[cell];
+      std::atomic<double>& entry = cellBound_[cell];
+      double bound = entry.load(std::memory_order_relaxed);
       if (bound == 0)
+      {
         bound = cellLowerBound(cellBox);
+        entry.store(bound, std::memory_order_relaxed);
+      }
       if (!(bound < atMost))
         return atMost;
     }

@@ -8,6 +8,7 @@
 // their smallest s_F, so a query visits the few faces that can set the minimum.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -26,8 +27,9 @@ public:
     const std::vector<double>& faceSize,
     double slope);
 
-  // min(atMost, ceiling(p)): faces that cannot go below atMost are not measured. Not for
-  // concurrent calls (it fills a cache of per-cell lower bounds).
+  // min(atMost, ceiling(p)): faces that cannot go below atMost are not measured. Threads may
+  // call it at once (the refinement's two halves do): the cache of per-cell lower bounds it
+  // fills holds atomic entries, and a cell's bound is the same whoever computes it first.
   double at(const double* p, double atMost) const;
 
   bool empty() const { return faces_.empty(); }
@@ -62,7 +64,9 @@ private:
   double cellOrigin_[3] = { 0, 0, 0 };
   double cellSize_ = 0;
   std::int32_t cellDims_[3] = { 0, 0, 0 };
-  mutable std::vector<double> cellBound_; // 0: not yet computed (bounds are > 0)
+  // 0: not yet computed (bounds are > 0). Relaxed atomics: two threads that compute a cell's
+  // bound at once store the same value, and a reader sees 0 (and computes it) or that value.
+  mutable std::vector<std::atomic<double>> cellBound_;
 
   double slope_ = 1;
   std::vector<Face> faces_;

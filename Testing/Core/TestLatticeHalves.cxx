@@ -68,3 +68,20 @@ TEST(LatticeHalves, TorusIsTheSameOnOneAndTwoThreads)
   // Not convex: walks reach the hole's surface and are postponed.
   expectSameOnOneAndTwoThreads(torus(1.0, 0.4, 48, 24), 0.05);
 }
+
+TEST(LatticeHalves, FineSurfaceIsTheSameOnOneAndTwoThreads)
+{
+  // Triangles smaller than h: the size ceiling (BoundarySizeCeiling) is queried by both
+  // halves of the lattice scan at once, and fills its cache of cell bounds as it goes (a data
+  // race under ThreadSanitizer until its entries were atomic).
+  const Surface s = cube(32);
+  const double h = 0.07;
+  const VolumeMeshResult v = meshWithThreads(s, h, "1");
+  ASSERT_TRUE(v.ok) << v.error;
+  // The ceiling is at work: next to the triangles (edges 1/32) new points get sizes below h.
+  int lowered = 0;
+  for (std::size_t i = static_cast<std::size_t>(s.pointCount()); i < v.vertexSize.size(); ++i)
+    lowered += v.vertexSize[i] < 0.8 * h;
+  EXPECT_GT(lowered, 500);
+  expectSameOnOneAndTwoThreads(s, h);
+}
