@@ -277,7 +277,8 @@ TEST(BoundarySizeFloor, IsTheLargestConeOverTheFaces)
 
 TEST(BoundarySizeCeiling, IsTheSmallestConeOverTheFaces)
 {
-  // 400 random triangles of random sizes in the unit cube; the hierarchy's answer equals the
+  // 400 random triangles of random sizes in the unit cube; the answer (from the cells' lists
+  // inside the faces' box, from the tree outside it) equals the
   // brute-force minimum of s_F + slope d(p, F) (and atMost where that is smaller) at 2000
   // random points inside and around.
   std::mt19937_64 rng(7);
