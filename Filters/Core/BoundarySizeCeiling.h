@@ -67,7 +67,7 @@ private:
   // slope times the half diagonal), by increasing lower bound. A query of the cell returns
   // atMost when the first bound is not below it (then the search would measure no face), else
   // reads the list up to the first bound not below the best value so far. The same answers
-  // as the tree search, in a third of femur.off's time.
+  // as the tree search (femur.off's lattice candidates 0.60 -> 0.37 s).
   struct CellEntry
   {
     float lower; // rounded down: still a lower bound, in half the memory (8 bytes an entry)
@@ -87,8 +87,9 @@ private:
     CellLists() = default;
     explicit CellLists(std::size_t n);
     CellLists(CellLists&&) = default;
-    CellLists& operator=(CellLists&&) = default;
+    CellLists& operator=(CellLists&& other) noexcept; // frees its own lists first
     ~CellLists();
+    void release();
   };
   double cellOrigin_[3] = { 0, 0, 0 };
   double cellSize_ = 0;
