@@ -63,7 +63,7 @@ private:
   // search walks ~40 nodes to show it, and the others walked as many. A lattice of cells keeps,
   // made on first use, the faces that can give the ceiling somewhere in the cell: those whose
   // lower bound over the cell (s_F + slope * the distance from the cell's box to F's box) is
-  // not above an upper bound of the ceiling over the cell (its value at the cell's centre plus
+  // below an upper bound of the ceiling over the cell (its value at the cell's centre plus
   // slope times the half diagonal), by increasing lower bound. A query of the cell returns
   // atMost when the first bound is not below it (then the search would measure no face), else
   // reads the list up to the first bound not below the best value so far. The same answers
@@ -75,7 +75,7 @@ private:
   };
   struct CellList
   {
-    std::vector<CellEntry> entries; // never empty
+    std::vector<CellEntry> entries; // holds the face giving the ceiling at the centre
   };
   const CellList& cellList(std::size_t cell, const double* cellBox) const;
   // A cell's list is made by the first thread that needs it and published by a
