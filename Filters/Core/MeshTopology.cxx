@@ -41,71 +41,62 @@ void VertexTetIndex::resetStamps()
   epoch_ = 1;
 }
 
-void vertexStar(const TetMesh& mesh, VertexTetIndex& index, VertexId v, std::vector<TetId>& star)
-{
-  star.clear();
-  TetId start = index.tetOf(mesh, v);
-  if (start < 0)
-    return;
-  index.startVisit();
-  index.visit(start);
-  star.push_back(start);
-  for (std::size_t k = 0; k < star.size(); ++k)
-  {
-    TetId t = star[k];
-    int iv = localIndex(mesh, t, v);
-    for (int f = 0; f < 4; ++f)
-    {
-      // Only faces with v are read: the optimiser's halves of space (QualityOptimization.cxx)
-      // may meanwhile re-glue the face opposite v when v is on the other side.
-      if (f == iv)
-        continue;
-      FaceRef n = mesh.neighbor(t, f);
-      if (n == kNoNeighbor)
-        continue;
-      TetId u = faceTet(n);
-      if (index.visit(u))
-        star.push_back(u);
-    }
-  }
-}
-
 namespace
 {
-// Walks the star of a in the order of vertexStar and returns the first tet for which
-// `match` is true (or -1), without building the whole star.
-template<typename Match>
-TetId firstInStar(const TetMesh& mesh, VertexTetIndex& index, VertexId a, Match match)
+// Walks the star of v by adjacency from index.tetOf(v), breadth first, appending its tets to
+// `queue` (cleared first), and returns the first for which `stop` is true (-1: none, the
+// whole star then in `queue`). Only faces with v are read: the optimiser's halves of space
+// (QualityOptimization.cxx) may meanwhile re-glue the face opposite v when v is on the other
+// side.
+template<typename Stop>
+TetId walkStar(const TetMesh& mesh,
+  VertexTetIndex& index,
+  VertexId v,
+  std::vector<TetId>& queue,
+  Stop stop)
 {
-  TetId start = index.tetOf(mesh, a);
+  queue.clear();
+  const TetId start = index.tetOf(mesh, v);
   if (start < 0)
     return -1;
-  thread_local std::vector<TetId> queue;
-  queue.clear();
   index.startVisit();
   index.visit(start);
   queue.push_back(start);
   for (std::size_t k = 0; k < queue.size(); ++k)
   {
-    TetId t = queue[k];
-    if (match(t))
+    const TetId t = queue[k];
+    if (stop(t))
       return t;
-    int ia = localIndex(mesh, t, a);
+    const int iv = localIndex(mesh, t, v);
     for (int f = 0; f < 4; ++f)
     {
-      if (f == ia)
+      if (f == iv)
         continue;
-      FaceRef n = mesh.neighbor(t, f);
+      const FaceRef n = mesh.neighbor(t, f);
       if (n == kNoNeighbor)
         continue;
-      TetId u = faceTet(n);
+      const TetId u = faceTet(n);
       if (index.visit(u))
         queue.push_back(u);
     }
   }
   return -1;
 }
+
+// The first tet of a's star, in vertexStar's order, for which `match` is true (or -1),
+// without building the rest of the star.
+template<typename Match>
+TetId firstInStar(const TetMesh& mesh, VertexTetIndex& index, VertexId a, Match match)
+{
+  thread_local std::vector<TetId> queue;
+  return walkStar(mesh, index, a, queue, match);
+}
 } // namespace
+
+void vertexStar(const TetMesh& mesh, VertexTetIndex& index, VertexId v, std::vector<TetId>& star)
+{
+  walkStar(mesh, index, v, star, [](TetId) { return false; });
+}
 
 TetId findEdge(const TetMesh& mesh, VertexTetIndex& index, VertexId a, VertexId b)
 {

@@ -28,6 +28,28 @@ void sortedFace(const TetMesh& mesh, TetId t, int f, VertexId out[3])
   std::sort(out, out + 3);
 }
 
+// The first non-empty message of check(t, f, n) over the faces f of live tets t that have a
+// neighbour n (each glued face seen from both sides).
+template<typename Check>
+std::string firstGluedFaceDefect(const TetMesh& mesh, Check check)
+{
+  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+  {
+    if (mesh.isDeleted(t))
+      continue;
+    for (int f = 0; f < 4; ++f)
+    {
+      const FaceRef n = mesh.neighbor(t, f);
+      if (n == kNoNeighbor)
+        continue;
+      std::string defect = check(t, f, n);
+      if (!defect.empty())
+        return defect;
+    }
+  }
+  return {};
+}
+
 } // namespace
 
 std::string checkOrientation(const TetMesh& mesh)
@@ -58,15 +80,9 @@ std::string checkOrientation(const TetMesh& mesh)
 
 std::string checkAdjacency(const TetMesh& mesh, bool requireSymmetricConstraints)
 {
-  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
-  {
-    if (mesh.isDeleted(t))
-      continue;
-    for (int f = 0; f < 4; ++f)
+  return firstGluedFaceDefect(mesh,
+    [&](TetId t, int f, FaceRef n) -> std::string
     {
-      const FaceRef n = mesh.neighbor(t, f);
-      if (n == kNoNeighbor)
-        continue;
       const TetId u = faceTet(n);
       const int g = faceIndex(n);
       std::ostringstream where;
@@ -82,38 +98,28 @@ std::string checkAdjacency(const TetMesh& mesh, bool requireSymmetricConstraints
         return where.str() + ": glued faces have different vertices";
       if (requireSymmetricConstraints && mesh.isConstrained(t, f) != mesh.isConstrained(u, g))
         return where.str() + ": constrained flag set on one side only";
-    }
-  }
-  return {};
+      return {};
+    });
 }
 
 std::string checkDelaunay(const TetMesh& mesh, bool skipConstrained)
 {
-  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
-  {
-    if (mesh.isDeleted(t))
-      continue;
-    for (int f = 0; f < 4; ++f)
+  return firstGluedFaceDefect(mesh,
+    [&](TetId t, int f, FaceRef n) -> std::string
     {
-      const FaceRef n = mesh.neighbor(t, f);
-      if (n == kNoNeighbor)
-        continue;
       const TetId u = faceTet(n);
       if (skipConstrained && (mesh.isConstrained(t, f) || mesh.isConstrained(u, faceIndex(n))))
-        continue;
+        return {};
       const VertexId opposite = mesh.vertex(u, faceIndex(n));
       const int s = predicates::insphereSoS(
         mesh, mesh.vertex(t, 0), mesh.vertex(t, 1), mesh.vertex(t, 2), mesh.vertex(t, 3), opposite);
-      if (s >= 0)
-      {
-        std::ostringstream msg;
-        msg << tetString(mesh, t) << " face " << f << ": opposite vertex " << opposite << " of tet "
-            << u << " is " << (s > 0 ? "inside" : "on") << " its circumsphere";
-        return msg.str();
-      }
-    }
-  }
-  return {};
+      if (s < 0)
+        return {};
+      std::ostringstream msg;
+      msg << tetString(mesh, t) << " face " << f << ": opposite vertex " << opposite << " of tet "
+          << u << " is " << (s > 0 ? "inside" : "on") << " its circumsphere";
+      return msg.str();
+    });
 }
 
 std::string checkVerticesPresent(const TetMesh& mesh,
