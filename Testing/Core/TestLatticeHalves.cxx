@@ -72,8 +72,8 @@ TEST(LatticeHalves, TorusIsTheSameOnOneAndTwoThreads)
 TEST(LatticeHalves, FineSurfaceIsTheSameOnOneAndTwoThreads)
 {
   // Triangles smaller than h: the size ceiling (BoundarySizeCeiling) is queried by both
-  // halves of the lattice scan at once, and fills its cache of cell bounds as it goes (a data
-  // race under ThreadSanitizer until its entries were atomic).
+  // halves of the lattice scan at once, and makes its per-cell face lists as it goes (published
+  // atomically; its earlier cache of cell bounds was a data race under ThreadSanitizer).
   const Surface s = cube(32);
   const double h = 0.07;
   const VolumeMeshResult v = meshWithThreads(s, h, "1");
