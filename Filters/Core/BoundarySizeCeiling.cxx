@@ -138,15 +138,20 @@ void BoundarySizeCeiling::CellLists::release()
 }
 
 const BoundarySizeCeiling::CellList& BoundarySizeCeiling::cellList(std::size_t cell,
-  const double* cellBox) const
+  const double* cellBox,
+  double atMost) const
 {
   std::atomic<CellList*>& slot = cells_.slots[cell];
-  if (const CellList* known = slot.load(std::memory_order_acquire))
+  CellList* known = slot.load(std::memory_order_acquire);
+  if (known && atMost <= known->limit)
     return *known;
+  // Faces whose bound is not below `cap` cannot answer this query (nor one with an atMost up
+  // to cap); the slack spares remaking the list for the next, slightly larger, atMost.
+  const double cap = 1.25 * atMost;
   // An upper bound of the ceiling anywhere in the cell: its value at the centre plus slope
   // times the half diagonal, widened for rounding by a relative 1e-9 and by the rounding of the
   // centre's and the corners' coordinates (far from the origin, ulps can exceed 1e-9 of a
-  // small cell).
+  // small cell). Measured from cap: a value at the centre not below it makes upper above cap.
   double centre[3], magnitude = 0;
   for (int a = 0; a < 3; ++a)
   {
@@ -154,27 +159,31 @@ const BoundarySizeCeiling::CellList& BoundarySizeCeiling::cellList(std::size_t c
     magnitude = std::max({ magnitude, std::fabs(cellBox[a]), std::fabs(cellBox[3 + a]) });
   }
   const double atCentre = search(
-    std::numeric_limits<double>::infinity(),
+    cap,
     [&](const double* box) { return geometry::pointBoxDistance(centre, box); },
     [&](const Face& f, double best) { return faceValue(f, centre, best); });
   const double halfDiagonal =
     0.5 * std::sqrt(3.0) * cellSize_ + 8 * std::numeric_limits<double>::epsilon() * magnitude;
   const double upper = (atCentre + slope_ * halfDiagonal) * (1 + 1e-9);
+  // Below upper (when atCentre < cap), every face that can give the ceiling in the cell:
+  // complete for any atMost. Else the faces below cap, complete for atMost up to cap.
+  const bool complete = atCentre < cap && upper <= cap;
+  const double bound = complete ? upper : cap;
   // Gathered in a scratch list, then copied at its size (lists grown by doubling held twice
   // their entries: femur.off's peak RSS 82 -> 93 MB with double bounds, now 86 MB).
   thread_local std::vector<CellEntry> entries;
   entries.clear();
-  // The tree search with its bound held at `upper` (not finite: every face) visits every face
+  // The tree search with its bound held at `bound` (not finite: every face) visits every face
   // whose lower bound over the cell is below it.
   search(
-    std::isfinite(upper) ? upper : std::numeric_limits<double>::infinity(),
+    std::isfinite(bound) ? bound : std::numeric_limits<double>::infinity(),
     [&](const double* box) { return boxBoxDistance(cellBox, box); },
-    [&](const Face& f, double bound)
+    [&](const Face& f, double b)
     {
       const double lower = f.size + slope_ * boxBoxDistance(cellBox, f.box);
-      if (lower < bound)
+      if (lower < b)
         entries.push_back({ floatBelow(lower), static_cast<std::int32_t>(&f - faces_.data()) });
-      return bound;
+      return b;
     });
   std::sort(entries.begin(),
     entries.end(),
@@ -182,11 +191,18 @@ const BoundarySizeCeiling::CellList& BoundarySizeCeiling::cellList(std::size_t c
     { return x.lower != y.lower ? x.lower < y.lower : x.face < y.face; });
   auto list = std::make_unique<CellList>();
   list->entries.assign(entries.begin(), entries.end());
-  CellList* expected = nullptr;
-  if (slot.compare_exchange_strong(
-        expected, list.get(), std::memory_order_acq_rel, std::memory_order_acquire))
-    return *list.release();
-  return *expected; // another thread's, the same list
+  list->limit = complete || !std::isfinite(bound) ? std::numeric_limits<double>::infinity() : cap;
+  for (;;)
+  {
+    list->replaced.reset(known);
+    if (slot.compare_exchange_strong(
+          known, list.get(), std::memory_order_acq_rel, std::memory_order_acquire))
+      return *list.release();
+    // Another thread published first (`known` is now its list, owned by the slot).
+    list->replaced.release();
+    if (atMost <= known->limit)
+      return *known;
+  }
 }
 
 double BoundarySizeCeiling::faceValue(const Face& f, const double* p, double bound) const
@@ -310,7 +326,7 @@ double BoundarySizeCeiling::at(const double* p, double atMost) const
       // A face's lower bound over the cell is at most its tree search bound at p (the box
       // distances are monotone), so the faces past the first bound not below best, and those
       // not listed (above the ceiling's upper bound over the cell), cannot go below it.
-      for (const CellEntry& e : cellList(cell, cellBox).entries)
+      for (const CellEntry& e : cellList(cell, cellBox, best).entries)
       {
         if (!(static_cast<double>(e.lower) < best))
           break;

@@ -31,7 +31,7 @@ public:
 
   // min(atMost, ceiling(p)): faces that cannot go below atMost are not measured. Threads may
   // call it at once (the refinement's two halves do): the per-cell lists it makes on first use
-  // (below) are published atomically, and a cell's list is the same whoever makes it.
+  // (below) are published atomically, and the answer is the same whoever makes them.
   double at(const double* p, double atMost) const;
 
   bool empty() const { return faces_.empty(); }
@@ -68,6 +68,10 @@ private:
   // atMost when the first bound is not below it (then the search would measure no face), else
   // reads the list up to the first bound not below the best value so far. The same answers
   // as the tree search (femur.off's lattice candidates 0.60 -> 0.37 s).
+  // A list also stops at `limit`, twice the atMost of the query that made it: faces whose
+  // bound is not below atMost cannot change a query's answer, and far from the small faces
+  // (sizes constant near h) the upper bound lets in hundreds of them. A query with a larger
+  // atMost makes the list again with its own limit.
   struct CellEntry
   {
     float lower; // rounded down: still a lower bound, in half the memory (8 bytes an entry)
@@ -76,10 +80,15 @@ private:
   struct CellList
   {
     std::vector<CellEntry> entries; // holds the face giving the ceiling at the centre
+    // Every face whose bound is below `limit` is listed (infinite: every face that can give
+    // the ceiling in the cell). The list it replaced, kept for the threads still reading it.
+    double limit = 0;
+    std::unique_ptr<CellList> replaced;
   };
-  const CellList& cellList(std::size_t cell, const double* cellBox) const;
+  const CellList& cellList(std::size_t cell, const double* cellBox, double atMost) const;
   // A cell's list is made by the first thread that needs it and published by a
-  // compare-and-swap (a thread that loses it drops its own, the same, list).
+  // compare-and-swap (a thread that loses it drops its own and reads the winner's, made again
+  // if its limit is too low). Lists may differ with the order of queries; answers do not.
   struct CellLists
   {
     std::unique_ptr<std::atomic<CellList*>[]> slots;

@@ -275,27 +275,27 @@ TEST(BoundarySizeFloor, IsTheLargestConeOverTheFaces)
   EXPECT_GT(raised, 50); // both sides of atLeast occur
 }
 
-TEST(BoundarySizeCeiling, IsTheSmallestConeOverTheFaces)
+// 400 random triangles of random sizes in the unit cube (face 5 left out: size 0), and the
+// brute-force minimum of s_F + slope d(p, F) that the ceiling must equal.
+struct RandomCeilingFaces
 {
-  // 400 random triangles of random sizes in the unit cube; the answer (from the cells' lists
-  // inside the faces' box, from the tree outside it) equals the
-  // brute-force minimum of s_F + slope d(p, F) (and atMost where that is smaller) at 2000
-  // random points inside and around.
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> unit(0, 1), around(-0.5, 1.5), size(0.01, 0.2);
+  static constexpr double kSlope = 0.5;
   std::vector<double> points;
   std::vector<std::int32_t> corners;
   std::vector<double> sizes;
-  for (int f = 0; f < 400; ++f)
+
+  explicit RandomCeilingFaces(std::mt19937_64& rng)
   {
-    appendRandomTriangle(rng, unit, 0.1, f, points, corners);
-    sizes.push_back(size(rng));
+    std::uniform_real_distribution<double> unit(0, 1), size(0.01, 0.2);
+    for (int f = 0; f < 400; ++f)
+    {
+      appendRandomTriangle(rng, unit, 0.1, f, points, corners);
+      sizes.push_back(size(rng));
+    }
+    sizes[5] = 0;
   }
-  sizes[5] = 0; // left out: not positive
-  const double slope = 0.5;
-  const BoundarySizeCeiling ceiling(points.data(), corners, sizes, slope);
-  ASSERT_FALSE(ceiling.empty());
-  auto bruteForce = [&](const double* p)
+
+  double bruteForce(const double* p) const
   {
     double smallest = 1e300;
     for (int f = 0; f < 400; ++f)
@@ -304,10 +304,24 @@ TEST(BoundarySizeCeiling, IsTheSmallestConeOverTheFaces)
         continue;
       const double* x = &points[9 * static_cast<std::size_t>(f)];
       const double d = std::sqrt(geometry::pointTriangleDistanceSquared(p, x, x + 3, x + 6));
-      smallest = std::min(smallest, sizes[static_cast<std::size_t>(f)] + slope * d);
+      smallest = std::min(smallest, sizes[static_cast<std::size_t>(f)] + kSlope * d);
     }
     return smallest;
-  };
+  }
+};
+
+TEST(BoundarySizeCeiling, IsTheSmallestConeOverTheFaces)
+{
+  // The answer (from the cells' lists inside the faces' box, from the tree outside it) equals
+  // the brute-force minimum (and atMost where that is smaller) at 2000 random points inside
+  // and around.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0, 1), around(-0.5, 1.5);
+  const RandomCeilingFaces faces(rng);
+  const double slope = RandomCeilingFaces::kSlope;
+  const BoundarySizeCeiling ceiling(faces.points.data(), faces.corners, faces.sizes, slope);
+  ASSERT_FALSE(ceiling.empty());
+  auto bruteForce = [&](const double* p) { return faces.bruteForce(p); };
   int capped = 0;
   for (int i = 0; i < 2000; ++i)
   {
@@ -333,5 +347,34 @@ TEST(BoundarySizeCeiling, IsTheSmallestConeOverTheFaces)
     ASSERT_EQ(ceiling.at(p, atMost), std::min(expected, atMost)) << i;
   }
   EXPECT_GT(early, 2000);
-  EXPECT_TRUE(BoundarySizeCeiling(points.data(), corners, sizes, 0.0).empty());
+  EXPECT_TRUE(BoundarySizeCeiling(faces.points.data(), faces.corners, faces.sizes, 0.0).empty());
+}
+
+TEST(BoundarySizeCeiling, ListsMadeForASmallBoundAnswerLargerOnes)
+{
+  // A cell's list stops a little above the atMost of the query that made it; a later query
+  // with a larger atMost must make it again, not read the short one. Every cell is first
+  // queried with a small atMost here, then with growing ones, at the same and other points.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const RandomCeilingFaces faces(rng);
+  const BoundarySizeCeiling ceiling(
+    faces.points.data(), faces.corners, faces.sizes, RandomCeilingFaces::kSlope);
+  std::vector<double> at;
+  for (int i = 0; i < 3000; ++i)
+    at.push_back(unit(rng));
+  int below = 0, cut = 0;
+  for (double atMost : { 0.012, 0.05, 0.1, 0.2, 1e300 })
+  {
+    for (std::size_t i = 0; i + 2 < at.size(); i += 3)
+    {
+      const double p[3] = { at[i], at[i + 1], at[i + 2] };
+      const double expected = faces.bruteForce(p);
+      below += expected < atMost;
+      cut += atMost < 1e300 && expected > 1.25 * atMost; // beyond the first lists' limit
+      ASSERT_EQ(ceiling.at(p, atMost), std::min(expected, atMost)) << i << " " << atMost;
+    }
+  }
+  EXPECT_GT(below, 1000); // the faces decide most answers, not atMost
+  EXPECT_GT(cut, 100);
 }
