@@ -325,7 +325,8 @@ double BoundarySizeCeiling::at(const double* p, double atMost) const
     {
       // A face's lower bound over the cell is at most its tree search bound at p (the box
       // distances are monotone), so the faces past the first bound not below best, and those
-      // not listed (above the ceiling's upper bound over the cell), cannot go below it.
+      // not listed (above the ceiling's upper bound over the cell, or not below the list's
+      // limit, which is at least atMost), cannot go below it.
       for (const CellEntry& e : cellList(cell, cellBox, best).entries)
       {
         if (!(static_cast<double>(e.lower) < best))

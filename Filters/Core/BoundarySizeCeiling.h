@@ -68,7 +68,7 @@ private:
   // atMost when the first bound is not below it (then the search would measure no face), else
   // reads the list up to the first bound not below the best value so far. The same answers
   // as the tree search (femur.off's lattice candidates 0.60 -> 0.37 s).
-  // A list also stops at `limit`, twice the atMost of the query that made it: faces whose
+  // A list also stops at `limit`, 1.25 times the atMost of the query that made it: faces whose
   // bound is not below atMost cannot change a query's answer, and far from the small faces
   // (sizes constant near h) the upper bound lets in hundreds of them. A query with a larger
   // atMost makes the list again with its own limit.

@@ -353,8 +353,8 @@ TEST(BoundarySizeCeiling, IsTheSmallestConeOverTheFaces)
 TEST(BoundarySizeCeiling, ListsMadeForASmallBoundAnswerLargerOnes)
 {
   // A cell's list stops a little above the atMost of the query that made it; a later query
-  // with a larger atMost must make it again, not read the short one. Every cell is first
-  // queried with a small atMost here, then with growing ones, at the same and other points.
+  // with a larger atMost must make it again, not read the short one. The cells of 1000 random
+  // points are first queried with a small atMost here, then at the same points with larger ones.
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> unit(0, 1);
   const RandomCeilingFaces faces(rng);
