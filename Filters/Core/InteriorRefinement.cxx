@@ -236,9 +236,8 @@ public:
         for (std::int64_t i = i0; i <= i1; ++i)
           for (std::int64_t j = j0; j <= j1; ++j)
           {
-            // i and j are clamped already: the row's first cell directly.
-            const std::int32_t* row =
-              &l.dense[static_cast<std::size_t>((i * l.dims[1] + j) * l.dims[2])];
+            // i and j are clamped already: the row's first cell without clamping again.
+            const std::int32_t* row = &l.dense[denseIndex(l, i, j, 0)];
             for (std::int64_t k = k0; k <= k1; ++k)
               for (std::int32_t n = row[k]; n >= 0; n = nodes_[n].next)
                 if (isNear(p, h, nodes_[n], sizes))
@@ -327,10 +326,14 @@ private:
   {
     return std::min(std::max(c, std::int64_t(0)), l.dims[a] - 1);
   }
+  // The array index of cell (i, j, k), which must be within the box's cells.
+  static std::size_t denseIndex(const Level& l, std::int64_t i, std::int64_t j, std::int64_t k)
+  {
+    return static_cast<std::size_t>((i * l.dims[1] + j) * l.dims[2] + k);
+  }
   static std::size_t denseSlot(const Level& l, std::int64_t i, std::int64_t j, std::int64_t k)
   {
-    return static_cast<std::size_t>(
-      (clampCell(l, i, 0) * l.dims[1] + clampCell(l, j, 1)) * l.dims[2] + clampCell(l, k, 2));
+    return denseIndex(l, clampCell(l, i, 0), clampCell(l, j, 1), clampCell(l, k, 2));
   }
   // The block of 4 cells (per axis) that holds cell c (floor division: c may be negative).
   static std::int64_t block(std::int64_t c) { return c >= 0 ? c / 4 : -((3 - c) / 4); }
