@@ -854,6 +854,11 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
     main_.moveBudget = passMoveBudget_;
     main_.changes = 0;
     collectBad(bad, true);
+    // Nothing below the target: no move of this pass or of a later one (insertion included)
+    // has a tet to start from, so the mesh is final. The stages' last passes found nothing
+    // on most runs, each a scan of every tet (0.1-0.2 ms at 12k tets, of a 60 ms run).
+    if (bad.empty())
+      break;
 
     // A smoothing sweep over the vertices of the bad tets first, when they are many (a
     // poor mesh: the sweep lifts whole regions at once); when they are few, the worst-first
