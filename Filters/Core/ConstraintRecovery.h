@@ -2,6 +2,8 @@
 // input points into one that has every input edge and every input triangle as a face.
 //
 // Strategy, in rounds:
+//  0. each missing input edge first gets TetGen's directional flips (DirectionalEdgeRecovery.h:
+//     the first face or edge the segment crosses is flipped away, validity alone deciding);
 //  1. each missing input edge, then each missing input face (whose edges exist), is recovered
 //     by 2-3 flips and edge removals (n -> 2n-4, including 3-2 and 4-4) chosen greedily; a
 //     move is kept only if it strictly lowers an exact integer measure of how much of the mesh
