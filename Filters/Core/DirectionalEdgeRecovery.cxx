@@ -1,48 +1,62 @@
 #include "DirectionalEdgeRecovery.h"
 
-#include "Predicates.h"
+#include "RecoveryGeometry.h"
 
 namespace tetmesher
 {
 namespace
 {
 
-// orient3d of tet t with its vertex k replaced by x.
-int orientReplacing(const TetMesh& mesh, TetId t, int k, VertexId x)
+// The points of tet t.
+struct TetPoints
 {
   const double* p[4];
-  for (int i = 0; i < 4; ++i)
-    p[i] = mesh.point(i == k ? x : mesh.vertex(t, i));
-  return predicates::orient3d(p[0], p[1], p[2], p[3]);
-}
+  TetPoints(const TetMesh& mesh, TetId t)
+    : p{ mesh.point(mesh.vertex(t, 0)),
+      mesh.point(mesh.vertex(t, 1)),
+      mesh.point(mesh.vertex(t, 2)),
+      mesh.point(mesh.vertex(t, 3)) }
+  {
+  }
+};
 
-// Where the segment from a towards b leaves a's star: the tet whose closed cone at a holds
-// it (a is its vertex `apex`), and how many of the cone's three faces hold it too (0: it
-// leaves through the far face's interior; 1: through the open edge of the far face that
-// lies in face `onFace`'s plane, onFace being the local index of the vertex opposite it;
-// 2: along an edge of the star, through a vertex).
+// Where the segment from a towards b leaves a's star: the tet whose closed cone at a holds it
+// (a is its vertex `apex`), and how many of the cone's three faces hold it too (0: it leaves
+// through the far face's interior; 1: through the open edge of the far face that lies in face
+// `onFace`'s plane, onFace being the local index of the vertex opposite it; 2: along an edge of
+// the star, through a vertex). `edge`: b is a vertex of the star, (a,b) is an edge already.
 struct Exit
 {
   TetId tet = -1;
   int apex = -1;
   int onFaces = 0;
   int onFace = -1;
+  bool edge = false;
 };
 
 // The cones of a's star tile the space around a, so one of them holds the segment (a valid
 // mesh, a inside its box). In it, replacing a far vertex by b gives a positive or flat tet.
+// When (a,b) is an edge, only the tets around it hold the segment, and each has b: so b is
+// looked for in each tet before its cone.
 Exit exitOfStar(const TetMesh& mesh, const std::vector<TetId>& star, VertexId a, VertexId b)
 {
+  const double* pb = mesh.point(b);
   for (TetId t : star)
   {
-    const int apex = localIndex(mesh, t, a);
     Exit exit;
+    if (localIndex(mesh, t, b) >= 0)
+    {
+      exit.edge = true;
+      return exit;
+    }
+    const int apex = localIndex(mesh, t, a);
+    const TetPoints tet(mesh, t);
     bool holds = true;
     for (int k = 0; k < 4 && holds; ++k)
     {
       if (k == apex)
         continue;
-      const int o = orientReplacing(mesh, t, k, b);
+      const int o = geometry::orientWithVertexReplaced(tet.p, k, pb);
       if (o < 0)
         holds = false;
       else if (o == 0)
@@ -61,14 +75,6 @@ Exit exitOfStar(const TetMesh& mesh, const std::vector<TetId>& star, VertexId a,
   return Exit();
 }
 
-bool hasVertex(const TetMesh& mesh, const std::vector<TetId>& star, VertexId b)
-{
-  for (TetId t : star)
-    if (localIndex(mesh, t, b) >= 0)
-      return true;
-  return false;
-}
-
 // Flips from a towards b; true when (a,b) is then an edge.
 bool flipFrom(TetMesh& mesh,
   VertexTetIndex& index,
@@ -84,9 +90,9 @@ bool flipFrom(TetMesh& mesh,
   for (int flip = 0;; ++flip)
   {
     vertexStar(mesh, index, a, star);
-    if (hasVertex(mesh, star, b))
-      return true;
     const Exit exit = exitOfStar(mesh, star, a, b);
+    if (exit.edge)
+      return true;
     if (exit.tet < 0 || exit.onFaces >= 2 || flip == maxFlips)
       return false;
     const TetId t = exit.tet;
@@ -125,10 +131,11 @@ bool flipFrom(TetMesh& mesh,
     // It would make the tet (a, p, q, s) for each far edge pq, s the apex across: an edge
     // whose tet is not positive blocks it.
     const VertexId s = mesh.vertex(faceTet(across), faceIndex(across));
+    const TetPoints tet(mesh, t);
     bool removed = false;
     for (int k = 0; k < 4 && !removed; ++k)
     {
-      if (k == exit.apex || orientReplacing(mesh, t, k, s) > 0)
+      if (k == exit.apex || geometry::orientWithVertexReplaced(tet.p, k, mesh.point(s)) > 0)
         continue;
       VertexId p, q;
       farEdgeWithout(k, p, q);

@@ -101,24 +101,18 @@ bool segmentsCross(const double* a, const double* b, const double* p, const doub
   return properCross2D(a, b, p, q, axis);
 }
 
-namespace
-{
-// Sign of n_f . (x - t[i]) for the face f of the positive tet t through its vertex t[i]
-// (f != i), n_f pointing inwards: orient3d of t with t[f] replaced by x.
-int insideFace(const double* const t[4], int f, const double* x)
+int orientWithVertexReplaced(const double* const t[4], int f, const double* x)
 {
   const double* q[4] = { t[0], t[1], t[2], t[3] };
   q[f] = x;
   return orient3d(q[0], q[1], q[2], q[3]);
 }
 
-} // namespace
-
 bool segmentFromVertexMissesTet(const double* const t[4], int i, const double* b)
 {
   for (int f = 0; f < 4; ++f)
   {
-    if (f != i && insideFace(t, f, b) < 0)
+    if (f != i && orientWithVertexReplaced(t, f, b) < 0)
       return true;
   }
   return false;
@@ -133,7 +127,7 @@ bool segmentFromVertexMeetsTet(const double* const t[4], int i, const double* b)
 {
   for (int f = 0; f < 4; ++f)
   {
-    if (f != i && insideFace(t, f, b) <= 0)
+    if (f != i && orientWithVertexReplaced(t, f, b) <= 0)
       return false;
   }
   return true;
@@ -153,7 +147,7 @@ bool segmentMeetsTet(const double* const t[4], const double* a, const double* b)
   int lowerCount = 0, upperCount = 0;
   for (int f = 0; f < 4; ++f)
   {
-    const int sa = insideFace(t, f, a), sb = insideFace(t, f, b);
+    const int sa = orientWithVertexReplaced(t, f, a), sb = orientWithVertexReplaced(t, f, b);
     if (sa <= 0 && sb <= 0)
       return false;
     if (sa < 0 && sb > 0)
@@ -197,7 +191,7 @@ bool triangleFromVertexMeetsTet(const double* const t[4], int i, const double* b
   {
     if (f == i)
       continue;
-    const int sb = insideFace(t, f, b), sc = insideFace(t, f, c);
+    const int sb = orientWithVertexReplaced(t, f, b), sc = orientWithVertexReplaced(t, f, c);
     if (sb <= 0 && sc <= 0)
       return false;
     if (sb > 0 && sc < 0)

@@ -32,6 +32,10 @@ bool simplexMeetsTetInteriorBySeparation(const double* const* points,
   int count,
   const double* const t[4]);
 
+// orient3d of the tetrahedron t[0..3] with its vertex t[f] replaced by x. For a positive t:
+// the side of the face opposite t[f] that x is on (> 0: t[f]'s side, 0: on its plane).
+int orientWithVertexReplaced(const double* const t[4], int f, const double* x);
+
 // The open segment (t[i], b) misses the closed tetrahedron t[0..3] (positively oriented):
 // b lies strictly outside one of the three face planes through t[i], so no point of the
 // segment but t[i] is in the tet's cone at t[i], which contains the tet. A quick way to rule
