@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <array>
-#include <map>
-#include <set>
+#include <cstdint>
+#include <vector>
 
 namespace tetmesher
 {
@@ -24,6 +24,15 @@ std::array<VertexId, 3> orientedKey(VertexId x, VertexId y, VertexId z)
   return { x, y, z };
 }
 
+// Sorts `v` and drops repeats (the flat sets below: a cavity has at most a few hundred tets,
+// and the node-based sets they replace cost more than the cone's exact tests).
+template<typename T>
+void sortUnique(std::vector<T>& v)
+{
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+}
+
 } // namespace
 
 bool coneFromVertex(const TetMesh& mesh,
@@ -33,8 +42,15 @@ bool coneFromVertex(const TetMesh& mesh,
   const CavityConeLimits& limits,
   std::vector<TetVertices>& cone)
 {
-  std::set<TetId> inside(cavity.begin(), cavity.end());
-  cavity.assign(inside.begin(), inside.end());
+  using Face = std::array<VertexId, 3>;
+  thread_local std::vector<TetId> inside; // the cavity, sorted
+  thread_local std::vector<Face> apexFaces, boundaryAtApex, unmatched;
+  thread_local std::vector<VertexId> vertices, coneVertices;
+  thread_local std::vector<std::uint64_t> keptEdges, coneEdges; // edgeKey (SurfaceInput.h)
+  inside = cavity;
+  sortUnique(inside);
+  cavity = inside;
+  auto isInside = [](TetId t) { return std::binary_search(inside.begin(), inside.end(), t); };
   // Growth: a boundary face that the apex does not strictly see takes the tet behind it in.
   for (bool grown = true; grown;)
   {
@@ -45,7 +61,7 @@ bool coneFromVertex(const TetMesh& mesh,
       for (int f = 0; f < 4; ++f)
       {
         const FaceRef n = mesh.neighbor(t, f);
-        const bool shared = n != kNoNeighbor && inside.count(faceTet(n));
+        const bool shared = n != kNoNeighbor && isInside(faceTet(n));
         if (shared)
         {
           if (mesh.isConstrained(t, f))
@@ -62,7 +78,7 @@ bool coneFromVertex(const TetMesh& mesh,
         if (n == kNoNeighbor || mesh.isConstrained(t, f) ||
           static_cast<int>(cavity.size()) >= limits.maxTets)
           return false;
-        inside.insert(faceTet(n));
+        inside.insert(std::lower_bound(inside.begin(), inside.end(), faceTet(n)), faceTet(n));
         cavity.push_back(faceTet(n));
         grown = true;
       }
@@ -73,30 +89,30 @@ bool coneFromVertex(const TetMesh& mesh,
   // The cone over the faces the apex sees; the faces through the apex must then pair up
   // (opposite orientations) except for the cavity's own boundary faces through the apex.
   cone.clear();
-  std::map<std::array<VertexId, 3>, int> apexFaces; // oriented face -> uses
-  std::set<std::array<VertexId, 3>> boundaryAtApex;
-  std::set<VertexId> vertices;
-  std::set<std::uint64_t> keptEdges; // edgeKey (SurfaceInput.h)
+  apexFaces.clear();
+  boundaryAtApex.clear();
+  vertices.clear();
+  keptEdges.clear();
   for (TetId t : cavity)
   {
     for (int i = 0; i < 4; ++i)
     {
-      vertices.insert(mesh.vertex(t, i));
+      vertices.push_back(mesh.vertex(t, i));
       for (int j = i + 1; j < 4; ++j)
         if (keepEdge && keepEdge(mesh.vertex(t, i), mesh.vertex(t, j)))
-          keptEdges.insert(edgeKey(mesh.vertex(t, i), mesh.vertex(t, j)));
+          keptEdges.push_back(edgeKey(mesh.vertex(t, i), mesh.vertex(t, j)));
     }
     for (int f = 0; f < 4; ++f)
     {
       const FaceRef n = mesh.neighbor(t, f);
-      if (n != kNoNeighbor && inside.count(faceTet(n)))
+      if (n != kNoNeighbor && isInside(faceTet(n)))
         continue;
       const int* fv = kFaceVertices[f];
       const VertexId x = mesh.vertex(t, fv[0]), y = mesh.vertex(t, fv[1]),
                      z = mesh.vertex(t, fv[2]);
       if (x == apex || y == apex || z == apex)
       {
-        boundaryAtApex.insert(orientedKey(x, y, z));
+        boundaryAtApex.push_back(orientedKey(x, y, z));
         continue;
       }
       cone.push_back({ x, y, z, apex });
@@ -105,34 +121,41 @@ bool coneFromVertex(const TetMesh& mesh,
       {
         const int* gv = kFaceVertices[g];
         const TetVertices& c = cone.back();
-        ++apexFaces[orientedKey(c[gv[0]], c[gv[1]], c[gv[2]])];
+        apexFaces.push_back(orientedKey(c[gv[0]], c[gv[1]], c[gv[2]]));
       }
     }
   }
-  std::set<std::array<VertexId, 3>> unmatched;
-  for (const auto& [face, uses] : apexFaces)
-  {
-    if (uses != 1)
-      return false;
-    if (!apexFaces.count(orientedKey(face[0], face[2], face[1])))
-      unmatched.insert(face);
-  }
+  // Each oriented face through the apex is used once; those whose reverse no cone tet has
+  // must be exactly the cavity's boundary faces through the apex.
+  std::sort(apexFaces.begin(), apexFaces.end());
+  if (std::adjacent_find(apexFaces.begin(), apexFaces.end()) != apexFaces.end())
+    return false;
+  unmatched.clear();
+  for (const Face& face : apexFaces)
+    if (!std::binary_search(
+          apexFaces.begin(), apexFaces.end(), orientedKey(face[0], face[2], face[1])))
+      unmatched.push_back(face);
+  sortUnique(boundaryAtApex);
   if (unmatched != boundaryAtApex)
     return false;
   // Nothing of the cavity may be lost: its vertices and the edges to keep.
-  std::set<VertexId> coneVertices;
-  std::set<std::uint64_t> coneEdges;
+  coneVertices.clear();
+  coneEdges.clear();
   for (const TetVertices& c : cone)
   {
     for (int i = 0; i < 4; ++i)
     {
-      coneVertices.insert(c[i]);
+      coneVertices.push_back(c[i]);
       for (int j = i + 1; j < 4; ++j)
-        coneEdges.insert(edgeKey(c[i], c[j]));
+        coneEdges.push_back(edgeKey(c[i], c[j]));
     }
   }
+  sortUnique(vertices);
+  sortUnique(coneVertices);
   if (coneVertices != vertices)
     return false;
+  sortUnique(keptEdges);
+  sortUnique(coneEdges);
   return std::includes(coneEdges.begin(), coneEdges.end(), keptEdges.begin(), keptEdges.end());
 }
 
