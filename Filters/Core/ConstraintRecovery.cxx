@@ -299,6 +299,15 @@ private:
   bool flipUntil(VertexId seed,
     const ItemCost& cost,
     const std::function<bool()>& done,
+    std::size_t search)
+  {
+    return flipUntil(seed, cost, memoized(cost, mesh_, emptyMemo()), done, search);
+  }
+  // The same with the measure memoized already (`cost`, from `exactCost`).
+  bool flipUntil(VertexId seed,
+    const ItemCost& exactCost,
+    const FlipCost& cost,
+    const std::function<bool()>& done,
     std::size_t search);
   // Collects the pipe and the flips on it; returns the best strict gain (0: none), with the
   // best move in `best` and the cost-neutral ones appended to `neutral` when given.
@@ -317,9 +326,10 @@ private:
     const std::function<bool()>& done,
     bool& moved);
   bool insertSteinerNear(VertexId seed, const ItemCost& cost);
-  // Refills the tets that input edge e cuts (grown until star-shaped) by the cone from one of
-  // its ends (CavityCone.h); true when the edge is then in the mesh.
-  bool refillEdgeCavity(std::size_t e);
+  // Refills the tets that input edge e cuts (grown until star-shaped, up to maxTets) by the
+  // cone from one of its ends (CavityCone.h); true when the edge is then in the mesh. `cost`:
+  // the edge's measure, memoized (edgeCost).
+  bool refillEdgeCavity(std::size_t e, const FlipCost& cost, int maxTets);
   // Empty memos for a new measure: a cleared one of the pool that no measure holds any more
   // (their slots are reused from search to search), else a new one.
   std::shared_ptr<MemoCaches> emptyMemo()
@@ -1012,10 +1022,10 @@ bool Recovery::lookahead(VertexId seed, const FlipCost& cost, std::vector<FlipCa
 
 bool Recovery::flipUntil(VertexId seed,
   const ItemCost& exactCost,
+  const FlipCost& cost,
   const std::function<bool()>& done,
   std::size_t search)
 {
-  const FlipCost cost = memoized(exactCost, mesh_, emptyMemo());
   lastSearchCost_ = cost;
   flip23Cache_.clear();
   edgeRemovalCache_.clear();
@@ -1281,17 +1291,17 @@ bool Recovery::insertSteinerNear(VertexId seed, const ItemCost& exactCost)
   return false;
 }
 
-bool Recovery::refillEdgeCavity(std::size_t e)
+bool Recovery::refillEdgeCavity(std::size_t e, const FlipCost& cost, int maxTets)
 {
   const VertexId ends[2] = { surface_.edges[e][0], surface_.edges[e][1] };
-  const FlipCost cost = memoized(edgeCost(ends[0], ends[1]), mesh_, emptyMemo());
   auto keep = [this](VertexId u, VertexId v) { return isInputEdge(u, v); };
   std::vector<TetId> cavity;
   std::vector<TetVertices> cone;
   for (int k = 0; k < 2; ++k)
   {
     collectPipe(ends[k], cost, cavity);
-    if (cavity.empty() || !coneFromVertex(mesh_, ends[k], cavity, keep, {}, cone))
+    if (cavity.empty() ||
+      !coneFromVertex(mesh_, ends[k], cavity, keep, CavityConeLimits{ maxTets }, cone))
       continue;
     const VertexId other = ends[1 - k];
     if (std::none_of(cone.begin(),
@@ -1526,11 +1536,15 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
          << surface_.edgeFirstTriangle[e];
     return name.str();
   };
-  // Directional flips (DirectionalEdgeRecovery.h), then the flip search for input edge e: by
-  // the edge alone, then (withFaces) with its triangles. True when the edge is in the mesh;
-  // else the failure is recorded (unless interrupted). The directional flips recover about
-  // half of the edges missing from CAD parts' Delaunay meshes at a few microseconds each,
-  // where the flip search took 40-60 (anchor.off, turbine.off, gear.vtp; 2026-11-30).
+  // Directional flips (DirectionalEdgeRecovery.h), then the refill of a small cavity by a cone
+  // (CavityCone.h), then the flip search for input edge e: by the edge alone, then (withFaces)
+  // with its triangles. True when the edge is in the mesh; else the failure is recorded
+  // (unless interrupted). The directional flips recover about half of the edges missing from
+  // CAD parts' Delaunay meshes at a few microseconds each, where the flip search took 40-60
+  // (anchor.off, turbine.off, gear.vtp; 2026-11-30). The cone shares the search's memoized
+  // measure (its pipe is the search's first), and takes many of the edges whose search would
+  // fail at 0.2-0.7 ms.
+  constexpr int kQuickConeTets = 48;
   auto keepEdge = [this](VertexId p, VertexId q) { return isInputEdge(p, q); };
   auto applyMove = [this](const FlipCandidate& move, bool isFlip23)
   {
@@ -1544,7 +1558,11 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
     currentItem_ = edgeName(e);
     if (flipEdgeIntoMesh(mesh_, index_, a, b, keepEdge, applyMove) && exists())
       return true;
-    if (flipUntil(a, edgeCost(a, b), exists, 2 * e))
+    const ItemCost alone = edgeCost(a, b);
+    const FlipCost cost = memoized(alone, mesh_, emptyMemo());
+    if (options_.refillCavities && refillEdgeCavity(e, cost, kQuickConeTets) && exists())
+      return true;
+    if (flipUntil(a, alone, cost, exists, 2 * e))
       return true;
     if (!interrupted_ && withFaces && flipUntil(a, edgeAndFacesCost(e), exists, 2 * e + 1))
       return true;
@@ -1643,7 +1661,14 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
     // A missing edge is refilled by a cone where possible (no new point), which counts as
     // one of its Steiner points for the bounds below.
     auto refilled = [&](std::size_t key)
-    { return key < edges.size() && options_.refillCavities && refillEdgeCavity(key); };
+    {
+      if (key >= edges.size() || !options_.refillCavities)
+        return false;
+      const CavityConeLimits unbounded;
+      return refillEdgeCavity(key,
+        memoized(edgeCost(edges[key][0], edges[key][1]), mesh_, emptyMemo()),
+        unbounded.maxTets);
+    };
     auto steinerFor =
       [&](std::size_t key, const std::string& name, VertexId seed, const ItemCost& cost)
     {

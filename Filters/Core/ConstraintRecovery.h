@@ -3,7 +3,10 @@
 //
 // Strategy, in rounds:
 //  0. each missing input edge first gets TetGen's directional flips (DirectionalEdgeRecovery.h:
-//     the first face or edge the segment crosses is flipped away, validity alone deciding);
+//     the first face or edge the segment crosses is flipped away, validity alone deciding),
+//     then, if still missing, the refill of the tets it cuts by a cone from one of its ends
+//     as in step 3, for cavities of up to 48 tets (no new point; a flip search that fails
+//     costs as much as 5-10 cone attempts);
 //  1. each missing input edge, then each missing input face (whose edges exist), is recovered
 //     by 2-3 flips and edge removals (n -> 2n-4, including 3-2 and 4-4) chosen greedily; a
 //     move is kept only if it strictly lowers an exact integer measure of how much of the mesh
