@@ -2,6 +2,7 @@
 // exactly (MeshChecks.h) for the contract of meshSurface: boundary faces == input triangles,
 // no Steiner point on the input surface, volume == enclosed volume, positive tets, regions,
 // bit-identical input points, determinism.
+#include "CorpusFiles.h"
 #include "MeshChecks.h"
 #include "Mesher.h"
 #include "SurfaceDiagnosis.h"
@@ -14,8 +15,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <string>
 
 using namespace tetmesher;
@@ -371,39 +370,6 @@ TEST(BoundaryMesh, ChecksCatchBrokenMeshes)
 
 namespace
 {
-// Minimal .off reader for the Data/ corpus (counts on the header line or the next one,
-// polygons as fans); coordinates are read with full double precision.
-bool readCorpusOff(const std::string& name, Surface& s)
-{
-  const std::filesystem::path path =
-    std::filesystem::path(__FILE__).parent_path().parent_path().parent_path() / "Data" / name;
-  std::ifstream in(path);
-  std::string header;
-  long nv = 0, nf = 0, ne = 0;
-  if (!(in >> header) || header.find("OFF") == std::string::npos || !(in >> nv >> nf >> ne))
-    return false;
-  for (long v = 0; v < nv; ++v)
-  {
-    double x, y, z;
-    if (!(in >> x >> y >> z))
-      return false;
-    s.addPoint(x, y, z);
-  }
-  for (long f = 0; f < nf; ++f)
-  {
-    int n = 0;
-    in >> n;
-    std::vector<std::int32_t> ids(n);
-    for (auto& id : ids)
-      in >> id;
-    if (!in || n < 3)
-      return false;
-    for (int k = 1; k + 1 < n; ++k)
-      s.addTriangle(ids[0], ids[k], ids[k + 1]);
-  }
-  return true;
-}
-
 // The corpus surfaces are closed single shells, oriented one way or the other.
 std::vector<int> consistentSign(const Surface& s)
 {
