@@ -52,36 +52,34 @@ bool coneFromVertex(const TetMesh& mesh,
   cavity = inside;
   auto isInside = [](TetId t) { return std::binary_search(inside.begin(), inside.end(), t); };
   // Growth: a boundary face that the apex does not strictly see takes the tet behind it in.
-  for (bool grown = true; grown;)
+  // One pass over the growing list: a face found visible stays visible, and one that becomes
+  // shared later is checked from the tet that came in (both sides of a constrained face are
+  // read, so a face flagged on one side only is caught too).
+  for (std::size_t k = 0; k < cavity.size(); ++k)
   {
-    grown = false;
-    for (std::size_t k = 0; k < cavity.size(); ++k)
+    const TetId t = cavity[k];
+    for (int f = 0; f < 4; ++f)
     {
-      const TetId t = cavity[k];
-      for (int f = 0; f < 4; ++f)
+      const FaceRef n = mesh.neighbor(t, f);
+      const bool shared = n != kNoNeighbor && isInside(faceTet(n));
+      if (shared)
       {
-        const FaceRef n = mesh.neighbor(t, f);
-        const bool shared = n != kNoNeighbor && isInside(faceTet(n));
-        if (shared)
-        {
-          if (mesh.isConstrained(t, f))
-            return false; // an input triangle inside the cavity would be lost
-          continue;
-        }
-        const int* fv = kFaceVertices[f];
-        const VertexId x = mesh.vertex(t, fv[0]), y = mesh.vertex(t, fv[1]),
-                       z = mesh.vertex(t, fv[2]);
-        if (x == apex || y == apex || z == apex)
-          continue;
-        if (predicates::orient3d(mesh.point(x), mesh.point(y), mesh.point(z), mesh.point(apex)) > 0)
-          continue;
-        if (n == kNoNeighbor || mesh.isConstrained(t, f) ||
-          static_cast<int>(cavity.size()) >= limits.maxTets)
-          return false;
-        inside.insert(std::lower_bound(inside.begin(), inside.end(), faceTet(n)), faceTet(n));
-        cavity.push_back(faceTet(n));
-        grown = true;
+        if (mesh.isConstrained(t, f) || mesh.isConstrained(faceTet(n), faceIndex(n)))
+          return false; // an input triangle inside the cavity would be lost
+        continue;
       }
+      const int* fv = kFaceVertices[f];
+      const VertexId x = mesh.vertex(t, fv[0]), y = mesh.vertex(t, fv[1]),
+                     z = mesh.vertex(t, fv[2]);
+      if (x == apex || y == apex || z == apex)
+        continue;
+      if (predicates::orient3d(mesh.point(x), mesh.point(y), mesh.point(z), mesh.point(apex)) > 0)
+        continue;
+      if (n == kNoNeighbor || mesh.isConstrained(t, f) ||
+        static_cast<int>(cavity.size()) >= limits.maxTets)
+        return false;
+      inside.insert(std::lower_bound(inside.begin(), inside.end(), faceTet(n)), faceTet(n));
+      cavity.push_back(faceTet(n));
     }
   }
   std::sort(cavity.begin(), cavity.end());
