@@ -1664,10 +1664,10 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
     {
       if (key >= edges.size() || !options_.refillCavities)
         return false;
-      const CavityConeLimits unbounded;
+      const CavityConeLimits defaults; // 256 tets: the last try before a point
       return refillEdgeCavity(key,
         memoized(edgeCost(edges[key][0], edges[key][1]), mesh_, emptyMemo()),
-        unbounded.maxTets);
+        defaults.maxTets);
     };
     auto steinerFor =
       [&](std::size_t key, const std::string& name, VertexId seed, const ItemCost& cost)
