@@ -41,6 +41,25 @@ constexpr int kCavity = 16;
 constexpr double kFlatScore = 0.01;
 constexpr int kWideCavity = 64;
 
+// True when t is below ctx's target, or a face neighbour that ctx owns is. (A half reads only
+// its own tets' qualities: a tet with a vertex of the other half is measured, and its cache
+// entry written, by whichever context owns it.)
+bool badOrNextToBad(const Context& ctx, TetId t)
+{
+  if (ctx.quality(t).score < ctx.options.qualityTarget)
+    return true;
+  for (int f = 0; f < 4; ++f)
+  {
+    const FaceRef n = ctx.mesh.neighbor(t, f);
+    if (n == kNoNeighbor)
+      continue;
+    const TetId u = faceTet(n);
+    if (ctx.ownsTet(u) && ctx.quality(u).score < ctx.options.qualityTarget)
+      return true;
+  }
+  return false;
+}
+
 class Optimizer
 {
 public:
@@ -168,7 +187,6 @@ private:
   // Works on `tets` in order, and on the bad tets its moves create (topological moves, then
   // smoothing), each tet at most once in the queue at a time.
   void workQueue(Worker& w, const std::vector<TetId>& tets);
-  bool badOrNextToBad(const Context& ctx, TetId t) const;
   // One pass's sweep (when `swept`) and queue in two halves of space, side by side, then
   // what needed both halves, in one sequence. bad: the pass's bad tets, worst first.
   void passInHalves(BadList& bad, bool swept);
@@ -526,25 +544,6 @@ void Optimizer::sweep(Worker& w, const std::vector<VertexId>& vertices, std::vec
       w.postponedVertices.push_back(v);
     }
   }
-}
-
-// True when t is below the target, or a face neighbour that this context owns is. (A half
-// reads only its own tets' qualities: a tet with a vertex of the other half is measured, and
-// its cache entry written, by whichever context owns it.)
-bool Optimizer::badOrNextToBad(const Context& ctx, TetId t) const
-{
-  if (ctx.quality(t).score < ctx.options.qualityTarget)
-    return true;
-  for (int f = 0; f < 4; ++f)
-  {
-    const FaceRef n = ctx_.mesh.neighbor(t, f);
-    if (n == kNoNeighbor)
-      continue;
-    const TetId u = faceTet(n);
-    if (ctx.ownsTet(u) && ctx.quality(u).score < ctx.options.qualityTarget)
-      return true;
-  }
-  return false;
 }
 
 void Optimizer::workQueue(Worker& w, const std::vector<TetId>& tets)
