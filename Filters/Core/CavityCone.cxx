@@ -82,7 +82,7 @@ bool coneFromVertex(const TetMesh& mesh,
       cavity.push_back(faceTet(n));
     }
   }
-  std::sort(cavity.begin(), cavity.end());
+  cavity = inside; // the grown cavity, sorted: each tet was added to both once
 
   // The cone over the faces the apex sees; the faces through the apex must then pair up
   // (opposite orientations) except for the cavity's own boundary faces through the apex.
