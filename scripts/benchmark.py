@@ -718,7 +718,14 @@ def main():
                 lines = [l for l in msg.strip().split("\n") if l.strip()]
                 errl = [l for l in lines if l.startswith("Error")] or \
                     [l for l in lines if "rror" in l or "ERROR" in l or "failed" in l.lower()]
-                err = (errl[0] if errl else (lines[-1] if lines else "no output")).strip()[:200]
+                # Else the defects TetMesher lists after its "cannot be meshed:" line, one per
+                # line, without the closing note in brackets (it was all the table showed).
+                head = next((i for i, l in enumerate(lines)
+                             if l.startswith("tetmesher:") and l.rstrip().endswith(":")), None)
+                listed = [l.strip() for l in lines[head + 1:] if not l.strip().startswith("(")] \
+                    if head is not None else []
+                err = (errl[0] if errl else "; ".join(listed) if listed
+                       else (lines[-1] if lines else "no output")).strip()[:200]
                 err = "rc %s: %s" % (rc, err)
             row["success"] = "yes" if present and row.get("tets", 0) > 0 else "no"
             if present and row.get("tets", 0) == 0 and not err:
