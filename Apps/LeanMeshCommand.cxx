@@ -5,6 +5,7 @@
 // mesh, cells of fewer than 3 points, triangle strips, a .vtp encoding ReadVtp declines, an
 // .stl ReadStl declines, and --with-vtk.
 #include "CommandLine.h"
+#include "MeshExport.h"
 #include "MeshOptions.h"
 #include "MeshReport.h"
 #include "PolygonTriangulation.h"
@@ -109,8 +110,9 @@ int RunMesh(int argc, char* argv[])
   if (usage >= 0)
     return usage;
   const std::string inExt = LowerExtension(options.input);
-  if (options.withVtk || LowerExtension(options.output) != ".vtu" || !options.background.empty() ||
-    (inExt != ".off" && inExt != ".vtp" && inExt != ".stl"))
+  const std::string outExt = LowerExtension(options.output);
+  if (options.withVtk || (outExt != ".vtu" && !IsExportExtension(outExt)) ||
+    !options.background.empty() || (inExt != ".off" && inExt != ".vtp" && inExt != ".stl"))
     return MeshWithVtk(options);
   return ReportingFileErrors(
     [&]
@@ -177,7 +179,19 @@ int RunMesh(int argc, char* argv[])
         return 1;
       }
       clock.Add(mesh.stageTimings);
-      WriteVtu(mesh, options.output, options.compress);
+      if (IsExportExtension(outExt))
+      {
+        ExportMesh out;
+        out.points = mesh.mesh.points.data();
+        out.pointCount = static_cast<std::int64_t>(mesh.mesh.points.size() / 3);
+        out.cells = mesh.cells.data();
+        out.tetCount = static_cast<std::int64_t>(mesh.cells.size() / 4);
+        out.regionIds = mesh.mesh.regionIds.empty() ? nullptr : mesh.mesh.regionIds.data();
+        out.inputFaceIds = mesh.inputFaceIds.empty() ? nullptr : mesh.inputFaceIds.data();
+        WriteExportMesh(out, options.output);
+      }
+      else
+        WriteVtu(mesh, options.output, options.compress);
       clock.Lap("writing");
       MeshSummary summary;
       summary.tetCount = static_cast<long long>(mesh.cells.size() / 4);

@@ -1,14 +1,18 @@
 #include "MeshFiles.h"
+#include "MeshExport.h"
 #include "MeshReport.h"
 #include "Report.h"
 
 #include "vtkAbstractPolyDataReader.h"
 #include "vtkAlgorithm.h"
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkCellType.h"
 #include "vtkCommand.h"
+#include "vtkDataArray.h"
 #include "vtkDataSet.h"
 #include "vtkDataSetReader.h"
+#include "vtkIdList.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -413,6 +417,49 @@ bool CellIdsFitInt32(vtkUnstructuredGrid* mesh)
 }
 } // namespace
 
+namespace
+{
+// The grid's tets, RegionId and InputFaceIds as WriteExportMesh takes them (the output of
+// vtkTetMesher: every cell a VTK_TETRA).
+void WriteExportFromGrid(vtkUnstructuredGrid* mesh, const std::string& path)
+{
+  const vtkIdType pointCount = mesh->GetNumberOfPoints();
+  std::vector<double> points(3 * static_cast<std::size_t>(pointCount));
+  for (vtkIdType p = 0; p < pointCount; ++p)
+    mesh->GetPoint(p, &points[3 * static_cast<std::size_t>(p)]);
+  const vtkIdType tetCount = mesh->GetNumberOfCells();
+  std::vector<std::int64_t> cells;
+  cells.reserve(4 * static_cast<std::size_t>(tetCount));
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < tetCount; ++c)
+  {
+    mesh->GetCellPoints(c, ids);
+    if (mesh->GetCellType(c) != VTK_TETRA || ids->GetNumberOfIds() != 4)
+      Fail(path, "cell " + std::to_string(c) + " is not a tetrahedron");
+    for (vtkIdType i = 0; i < 4; ++i)
+      cells.push_back(ids->GetId(i));
+  }
+  std::vector<std::int32_t> regions;
+  std::vector<std::int64_t> faces;
+  vtkDataArray* regionArray = mesh->GetCellData()->GetArray("RegionId");
+  vtkDataArray* faceArray = mesh->GetCellData()->GetArray("InputFaceIds");
+  for (vtkIdType c = 0; regionArray && c < tetCount; ++c)
+    regions.push_back(static_cast<std::int32_t>(regionArray->GetComponent(c, 0)));
+  if (faceArray && faceArray->GetNumberOfComponents() == 4)
+    for (vtkIdType c = 0; c < tetCount; ++c)
+      for (int i = 0; i < 4; ++i)
+        faces.push_back(static_cast<std::int64_t>(faceArray->GetComponent(c, i)));
+  ExportMesh out;
+  out.points = points.data();
+  out.pointCount = pointCount;
+  out.cells = cells.data();
+  out.tetCount = tetCount;
+  out.regionIds = regions.empty() ? nullptr : regions.data();
+  out.inputFaceIds = faces.empty() ? nullptr : faces.data();
+  WriteExportMesh(out, path);
+}
+} // namespace
+
 void WriteVolumeMesh(vtkUnstructuredGrid* mesh, const std::string& path, bool compress)
 {
   const std::string ext = LowerExtension(path);
@@ -443,9 +490,14 @@ void WriteVolumeMesh(vtkUnstructuredGrid* mesh, const std::string& path, bool co
     writer->SetFileTypeToBinary();
     ok = Write(writer);
   }
+  else if (IsExportExtension(ext))
+  {
+    WriteExportFromGrid(mesh, path);
+    return;
+  }
   else
   {
-    Fail(path, "unknown output type '" + ext + "' (use .vtu or .vtk)");
+    Fail(path, "unknown output type '" + ext + "' (use .vtu, .vtk, .msh, .node or .ele)");
   }
   if (!ok)
   {

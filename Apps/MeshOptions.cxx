@@ -1,5 +1,6 @@
 #include "MeshOptions.h"
 
+#include "MeshExport.h"
 #include "SurfaceFiles.h"
 
 #include <algorithm>
@@ -14,7 +15,7 @@ namespace cli
 {
 namespace
 {
-const char* const kMeshUsage = R"(usage: tetmesher mesh SURFACE -o OUT.vtu [options]
+const char* const kMeshUsage = R"(usage: tetmesher mesh SURFACE -o OUT [options]
 
 Tetrahedralizes the closed triangulated surface SURFACE. The boundary of the result is
 exactly the input triangles (same points, same coordinates); points 0..n-1 of OUT are the
@@ -22,7 +23,10 @@ input points. Interior points follow the size field h (default: the mean length 
 boundary edges at each surface point, interpolated inside), then the worst elements are
 improved by flips, edge removal and smoothing.
 
-SURFACE: .stl .obj .ply .vtp .vtk .off          OUT: .vtu or .vtk
+SURFACE: .stl .obj .ply .vtp .vtk .off
+OUT: .vtu or .vtk (VTK), .msh (Gmsh 2.2 ASCII: tets tagged RegionId + 1, boundary
+     triangles input cell id + 1), .node or .ele (TetGen: NAME.node, NAME.ele with the
+     RegionId attribute, NAME.face with the input cell id + 1 as marker)
 
 options:
   -o, --output FILE     where to write the mesh (required)
@@ -182,10 +186,10 @@ int ParseMeshOptions(int argc, char* argv[], MeshOptions& o)
     return 2;
   }
   const std::string outExt = LowerExtension(o.output);
-  if (outExt != ".vtu" && outExt != ".vtk")
+  if (outExt != ".vtu" && outExt != ".vtk" && !IsExportExtension(outExt))
   {
     std::fprintf(stderr,
-      "tetmesher mesh: %s: unknown output type '%s' (use .vtu or .vtk)\n",
+      "tetmesher mesh: %s: unknown output type '%s' (use .vtu, .vtk, .msh, .node or .ele)\n",
       o.output.c_str(),
       outExt.c_str());
     return 2;

@@ -20,7 +20,8 @@ commands:
   quality MESH   print the quality summary of a tetrahedral mesh
                  (.vtu .vtk, TetGen .node/.ele, Gmsh ASCII .msh)
   mesh SURFACE   tetrahedralize a closed triangulated surface
-                 (.stl .obj .ply .vtp .vtk .off), boundary kept exactly
+                 (.stl .obj .ply .vtp .vtk .off), boundary kept exactly;
+                 writes .vtu .vtk, Gmsh .msh, TetGen .node/.ele/.face
 
 Run 'tetmesher COMMAND --help' for the options of a command.
 )";
