@@ -261,7 +261,15 @@ public:
       constexpr std::int64_t kMaxMasks = 64;
       if (nb[0] * nb[1] * nb[2] > kMaxMasks)
       {
-        // A query far larger than the cells (rare): every cell of the range.
+        // A query far larger than the cells (rare): every cell of the range, unless no block
+        // of it holds a vertex.
+        bool occupied = false;
+        for (std::int64_t i = b0[0]; i < b0[0] + nb[0] && !occupied; ++i)
+          for (std::int64_t j = b0[1]; j < b0[1] + nb[1] && !occupied; ++j)
+            for (std::int64_t k = b0[2]; k < b0[2] + nb[2] && !occupied; ++k)
+              occupied = l.blocks.find(cellKey(i, j, k)) != nullptr;
+        if (!occupied)
+          continue;
         for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
           for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
             for (std::int64_t k = c0[2]; k <= c1[2]; ++k)
