@@ -17,10 +17,12 @@ import shutil
 import subprocess
 import sys
 import tempfile
-from fractions import Fraction
 
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "Python"))
+from mesh_invariants import orient_exact  # noqa: E402
 
 exe, corpus = sys.argv[1], sys.argv[2]
 failures = []
@@ -50,17 +52,6 @@ def read_vtu(path):
     regions = [int(r) for r in vtk_to_numpy(grid.GetCellData().GetArray("RegionId"))]
     faces = vtk_to_numpy(grid.GetCellData().GetArray("InputFaceIds")).reshape(-1, 4)
     return points, cells, regions, [[int(x) for x in row] for row in faces]
-
-
-def orient(a, b, c, d):
-    """Sign of det[b-a, c-a, d-a] in exact rationals (positive: d above the plane a, b, c)."""
-    a, b, c, d = ([Fraction(x) for x in p] for p in (a, b, c, d))
-    u = [b[i] - a[i] for i in range(3)]
-    v = [c[i] - a[i] for i in range(3)]
-    w = [d[i] - a[i] for i in range(3)]
-    det = (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
-           + u[2] * (v[0] * w[1] - v[1] * w[0]))
-    return (det > 0) - (det < 0)
 
 
 def expected_triangles(cells, faces):
@@ -97,7 +88,7 @@ def check_triangles(label, written, wanted, points, cells):
         # And exactly: the tet's fourth point lies behind the triangle.
         tet = cells[entry[2]]
         apex = [p for p in tet if p not in tri][0]
-        check(orient(points[tri[0]], points[tri[1]], points[tri[2]], points[apex]) < 0,
+        check(orient_exact(points[tri[0]], points[tri[1]], points[tri[2]], points[apex]) < 0,
               "%s: triangle %s faces into its tet" % (label, tri))
 
 
