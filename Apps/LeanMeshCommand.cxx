@@ -1,6 +1,6 @@
-// `tetmesher mesh` without VTK: .off, .stl or .vtp in, .vtu out, the core's whole job
-// (meshSurface, as vtkTetMesher runs it) in between; polygons are triangulated as
-// vtkTetMesher does (triangulatePolygon). VTK's ~28 libraries are loaded
+// `tetmesher mesh` without VTK: .off, .stl or .vtp in, .vtu (or .msh, TetGen files) out,
+// the core's whole job (meshSurface, as vtkTetMesher runs it) in between; polygons are
+// triangulated as vtkTetMesher does (triangulatePolygon). VTK's ~28 libraries are loaded
 // (libtetmesherVtk.so) only for what this path leaves to them: other formats, a background
 // mesh, cells of fewer than 3 points, triangle strips, a .vtp encoding ReadVtp declines, an
 // .stl ReadStl declines, and --with-vtk.
