@@ -115,8 +115,11 @@ struct OptimizationResult
   int flips23 = 0, flips32 = 0, edgeRemovals = 0, smoothedVertices = 0;
   int multiFaceRemovals = 0; // more than one face (one face: flips23)
   int insertedVertices = 0;  // by vertex insertion (options.insertion)
-  int passesRun = 0;
-  int passesInHalves = 0; // of passesRun (OptimizationOptions::halvesMinBadTets)
+  int passesRun = 0;         // passes that worked on bad tets
+  int passesInHalves = 0;    // of passesRun (OptimizationOptions::halvesMinBadTets)
+  // Stages ended before their passes were done because a pass changed tets but neither raised
+  // the minimum nor left fewer tets below the target (a poor surface bounds them).
+  int stagesEndedWithoutGain = 0;
   double seconds = 0;
 };
 

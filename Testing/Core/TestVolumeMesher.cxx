@@ -329,3 +329,31 @@ TEST(VolumeMesher, SurfaceBeyondTheMemoryLimitIsRefused)
   r = meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), options);
   EXPECT_TRUE(r.ok) << r.error;
 }
+
+// A stage stops once a pass changed tets but neither raised the minimum nor left fewer tets
+// below the target, rather than running its other passes on tets that the surface's slot
+// corners bound (a ring with 24 deep slots: 5 passes of 6). The minima still
+// never fall, and the boundary is kept.
+TEST(VolumeMesher, OptimiserEndsAStageThatNoLongerGains)
+{
+  Surface s = slottedRing(24, 3, 1.0, 1.5, 1.8, 0.6);
+  const VolumeMeshOptions options;
+  const VolumeMeshResult v =
+    meshVolume(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), options);
+  ASSERT_TRUE(v.ok) << v.error;
+  std::vector<int> sign(static_cast<std::size_t>(s.triangleCount()), 1);
+  EXPECT_EQ(checkMesh(s, asMesherResult(v, s.pointCount()), sign, 1), "");
+  const OptimizationResult& r = v.optimizationStats;
+  std::printf("slotted ring: %d passes, %d stage(s) ended without gain, Q min %.4f -> %.4f, "
+              "dihedral min %.2f -> %.2f\n",
+    r.passesRun,
+    r.stagesEndedWithoutGain,
+    r.minQualityBefore,
+    r.minQualityAfter,
+    r.minDihedralBefore,
+    r.minDihedralAfter);
+  EXPECT_GE(r.stagesEndedWithoutGain, 1);
+  EXPECT_LT(r.passesRun, 2 * options.optimization.passes);
+  EXPECT_GE(r.minQualityAfter, r.minQualityBefore);
+  EXPECT_GE(r.minDihedralAfter, r.minDihedralBefore);
+}
