@@ -685,6 +685,9 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   std::vector<char> onConstraint(static_cast<std::size_t>(initialCount), 0);
   EpochHashTable<std::uint64_t, std::uint8_t, MixHash64> constrainedEdges;
   std::vector<TetId> vertexTet(static_cast<std::size_t>(initialCount), -1);
+  // The domain's boundary faces (on one tet only) at each initial vertex: a star that meets
+  // fewer is one of several, the domain pinched at the vertex (see starRoundRatio).
+  std::vector<std::int32_t> boundaryFacesAt(static_cast<std::size_t>(initialCount), 0);
   for (TetId t = 0; t < mesh.tetCapacity(); ++t)
   {
     if (mesh.isDeleted(t))
@@ -693,6 +696,9 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       vertexTet[mesh.vertex(t, i)] = t;
     for (int f = 0; f < 4; ++f)
     {
+      if (mesh.neighbor(t, f) == kNoNeighbor)
+        for (int k = 0; k < 3; ++k)
+          ++boundaryFacesAt[static_cast<std::size_t>(mesh.vertex(t, kFaceVertices[f][k]))];
       if (!faceIsConstrained(mesh, t, f))
         continue;
       VertexId fv[3];
@@ -1886,11 +1892,218 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       aborted = true;
     return true;
   };
+  // Edge (a, b), a < b, as a candidate if it is too long and not constrained; tet: a tet of
+  // the edge (the smallest id, as the graph lists it).
+  auto considerEdge = [&](VertexId a, VertexId b, TetId tet, std::vector<Candidate>& out)
+  {
+    if (a < initialCount && b < initialCount && onConstraint[a] && onConstraint[b] &&
+      constrainedEdges.find(edgeKey(a, b)))
+      return;
+    const double length = distance(mesh.point(a), mesh.point(b)) * 0.5 * (1 / h[a] + 1 / h[b]);
+    if (!(length > options.maxEdgeRatio))
+      return;
+    double p[3];
+    splitPoint(a, b, p);
+    const std::uint64_t lengthClass =
+      static_cast<std::uint64_t>(std::min(15.0, std::log2(length / options.maxEdgeRatio)));
+    out.push_back({ ((15 - lengthClass) << 48) | hilbertKey(p), a, b, tet });
+  };
+
+  // Rounds from stars (RefinementOptions::starRoundRatio). An edge too long at a round's
+  // start is one of the last round's candidates that is still there (lengths and sizes of old
+  // vertices do not change but by the gradation), or has an end inserted since (insertion only
+  // adds edges at the new vertex), or one whose size the gradation has just lowered: the stars
+  // of those vertices and the last candidates give the same edges as the graph.
+  std::vector<Candidate> previous; // the last round's candidates
+  VertexId scannedCount = 0;       // the vertices at the last round's start
+  bool starsFailed = false;        // a star could not be listed: the graph from then on
+  std::vector<std::pair<VertexId, TetId>> starEdges; // (neighbour, smallest tet of the edge)
+  std::vector<std::int32_t> starFirst, starSize;
+  std::vector<std::uint32_t> starStamp;
+  std::uint32_t starEpoch = 0;
+  std::vector<TetId> walked;
+  // The neighbours of v with their smallest tet, listed once per round; false when v's tet is
+  // not known or its star misses some of its boundary faces.
+  auto listStar = [&](VertexId v) -> bool
+  {
+    const std::size_t i = static_cast<std::size_t>(v);
+    if (starStamp[i] == starEpoch)
+      return true;
+    const TetId t = vertexTet[i];
+    if (t < 0 || t >= mesh.tetCapacity() || mesh.isDeleted(t) || !tetHas(mesh, t, v))
+      return false;
+    starOf(mesh, t, v, walked);
+    const std::int32_t first = static_cast<std::int32_t>(starEdges.size());
+    std::int32_t boundaryFaces = 0;
+    for (TetId u : walked)
+      for (int k = 0; k < 4; ++k)
+      {
+        const VertexId w = mesh.vertex(u, k);
+        if (w == v)
+          continue;
+        if (v < initialCount && mesh.neighbor(u, k) == kNoNeighbor)
+          ++boundaryFaces; // the face opposite w has v
+        auto known = std::find_if(starEdges.begin() + first,
+          starEdges.end(),
+          [w](const std::pair<VertexId, TetId>& e) { return e.first == w; });
+        if (known == starEdges.end())
+          starEdges.emplace_back(w, u);
+        else
+          known->second = std::min(known->second, u);
+      }
+    if (v < initialCount && boundaryFaces != boundaryFacesAt[i])
+    {
+      starEdges.resize(static_cast<std::size_t>(first));
+      return false;
+    }
+    starStamp[i] = starEpoch;
+    starFirst[i] = first;
+    starSize[i] = static_cast<std::int32_t>(starEdges.size()) - first;
+    return true;
+  };
+  // The gradation and the candidates of a round from stars; false (sizes unchanged, no
+  // candidates) when a star could not be listed.
+  std::vector<VertexId> lowered, changedVertices;
+  std::vector<std::uint32_t> changedStamp;
+  auto roundFromStars = [&](VertexId count) -> bool
+  {
+    ++starEpoch;
+    starEdges.clear();
+    starStamp.resize(static_cast<std::size_t>(count), 0);
+    starFirst.resize(static_cast<std::size_t>(count));
+    starSize.resize(static_cast<std::size_t>(count));
+    changedStamp.resize(static_cast<std::size_t>(count), 0);
+    changedVertices.clear();
+    auto markChanged = [&](VertexId v)
+    {
+      if (changedStamp[static_cast<std::size_t>(v)] != starEpoch)
+      {
+        changedStamp[static_cast<std::size_t>(v)] = starEpoch;
+        changedVertices.push_back(v);
+      }
+    };
+    for (VertexId v = scannedCount; v < count; ++v)
+      markChanged(v);
+    if (sizeOptions.gradation > 1)
+    {
+      // The graph's rounds seed the vertices since the last gradation and their neighbours.
+      // An old neighbour w (its edges to old vertices within the bound) can only lower the new
+      // vertices next to it: that is done first here, the new vertices seeding the rest (the
+      // sizes are those of the graph's rounds: the largest within the bound on every edge,
+      // whatever lowers them in whichever order). Its stars are those the candidates need.
+      seeds.clear();
+      const double slope = sizeOptions.gradation - 1;
+      std::vector<std::pair<VertexId, double>> pulled;
+      for (VertexId v = gradedCount; v < count; ++v)
+      {
+        if (!listStar(v))
+          return false;
+        double hv = h[v];
+        for (std::int32_t k = 0; k < starSize[v]; ++k)
+        {
+          const VertexId w = starEdges[static_cast<std::size_t>(starFirst[v] + k)].first;
+          if (w < gradedCount)
+            hv = std::min(hv, h[w] + slope * distance(mesh.point(w), mesh.point(v)));
+        }
+        pulled.emplace_back(v, hv);
+        seeds.push_back(v);
+      }
+      for (const auto& [v, hv] : pulled)
+        h[v] = hv; // old neighbours' sizes only were read: the order does not matter
+      const std::int64_t graded = limitGradationFrom(
+        mesh.coords.data(),
+        count,
+        sizeOptions.gradation,
+        h.data(),
+        seeds,
+        [&](VertexId v, std::vector<VertexId>& list)
+        {
+          if (!listStar(v))
+            return false;
+          list.clear();
+          for (std::int32_t k = 0; k < starSize[v]; ++k)
+            list.push_back(starEdges[static_cast<std::size_t>(starFirst[v] + k)].first);
+          return true;
+        },
+        lowered);
+      if (graded < 0)
+        return false;
+      gradedCount = count;
+      for (VertexId v : lowered)
+        markChanged(v);
+    }
+    candidates.clear();
+    for (VertexId v : changedVertices)
+    {
+      if (!listStar(v))
+      {
+        candidates.clear();
+        return false; // the sizes stay graded: the graph's round grades nothing more
+      }
+      for (std::int32_t k = 0; k < starSize[v]; ++k)
+      {
+        const auto [w, tet] = starEdges[static_cast<std::size_t>(starFirst[v] + k)];
+        // Once per edge: from its smaller end when both ends changed.
+        if (changedStamp[static_cast<std::size_t>(w)] == starEpoch && w < v)
+          continue;
+        considerEdge(std::min(v, w), std::max(v, w), tet, candidates);
+      }
+    }
+    for (const Candidate& c : previous)
+    {
+      if (changedStamp[static_cast<std::size_t>(c.a)] == starEpoch ||
+        changedStamp[static_cast<std::size_t>(c.b)] == starEpoch)
+        continue; // listed above if still there
+      // The smallest tet of a's star with b, if any (most of these edges were split).
+      const TetId t = vertexTet[static_cast<std::size_t>(c.a)];
+      if (t < 0 || t >= mesh.tetCapacity() || mesh.isDeleted(t) || !tetHas(mesh, t, c.a))
+      {
+        candidates.clear();
+        return false; // as above
+      }
+      starOf(mesh, t, c.a, walked);
+      TetId smallest = -1;
+      std::int32_t boundaryFaces = 0;
+      for (TetId u : walked)
+      {
+        const bool hasB = tetHas(mesh, u, c.b);
+        if (hasB && (smallest < 0 || u < smallest))
+          smallest = u;
+        if (c.a < initialCount)
+          for (int k = 0; k < 4; ++k)
+            boundaryFaces += mesh.vertex(u, k) != c.a && mesh.neighbor(u, k) == kNoNeighbor;
+      }
+      if (c.a < initialCount && boundaryFaces != boundaryFacesAt[static_cast<std::size_t>(c.a)])
+      {
+        candidates.clear();
+        return false;
+      }
+      if (smallest >= 0)
+        considerEdge(c.a, c.b, smallest, candidates);
+    }
+    return true;
+  };
+
   for (int round = 0; round < options.maxRounds; ++round)
   {
-    if (round > 0 || result.latticePoints > 0)
+    const VertexId roundCount = mesh.vertexCount();
+    bool fromStars = false;
+    if (round > 0 && !starsFailed && options.starRoundRatio > 0 &&
+      options.starRoundRatio *
+          static_cast<double>(
+            previous.size() + 2 * static_cast<std::size_t>(roundCount - scannedCount)) <
+        static_cast<double>(mesh.liveTetCount()))
+    {
+      // A failure leaves the sizes graded or as they were, and no candidates: the graph's
+      // round below then does the rest.
+      fromStars = roundFromStars(roundCount);
+      starsFailed = !fromStars;
+      result.starRounds += fromStars ? 1 : 0;
+      result.starsRefused = starsFailed;
+    }
+    if (!fromStars && (round > 0 || result.latticePoints > 0))
       graph.build(mesh, wantTwoThreads(0));
-    if (sizeOptions.gradation > 1)
+    if (!fromStars && sizeOptions.gradation > 1)
     {
       const VertexId count = mesh.vertexCount();
       seeds.clear();
@@ -1925,7 +2138,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     }
     // The edges too long, from each half of the vertices (by their edges) side by side on
     // large meshes; in vertex order, then sorted: the same on one thread or two.
-    const VertexId nv = mesh.vertexCount();
+    const VertexId nv = fromStars ? 0 : mesh.vertexCount();
     const bool scanHalves = nv >= kMinVerticesForScanHalves;
     const VertexId middle = scanHalves
       ? static_cast<VertexId>(std::lower_bound(graph.offsets.begin(),
@@ -1934,7 +2147,8 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
           graph.offsets.begin())
       : nv;
     std::vector<Candidate> secondHalf;
-    candidates.clear();
+    if (!fromStars)
+      candidates.clear();
     splitAt(scanHalves && wantTwoThreads(0),
       middle,
       nv,
@@ -1946,20 +2160,8 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
           for (std::int32_t k = graph.offsets[a]; k < graph.offsets[a + 1]; ++k)
           {
             const VertexId b = graph.targets[k];
-            if (b < a)
-              continue;
-            if (a < initialCount && b < initialCount && onConstraint[a] && onConstraint[b] &&
-              constrainedEdges.find(edgeKey(a, b)))
-              continue;
-            const double length =
-              distance(mesh.point(a), mesh.point(b)) * 0.5 * (1 / h[a] + 1 / h[b]);
-            if (!(length > options.maxEdgeRatio))
-              continue;
-            double p[3];
-            splitPoint(a, b, p);
-            const std::uint64_t lengthClass =
-              static_cast<std::uint64_t>(std::min(15.0, std::log2(length / options.maxEdgeRatio)));
-            out.push_back({ ((15 - lengthClass) << 48) | hilbertKey(p), a, b, graph.tetOf[k] });
+            if (b > a)
+              considerEdge(a, b, graph.tetOf[k], out);
           }
         }
       });
@@ -1971,6 +2173,8 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       candidates.end(),
       [](const Candidate& x, const Candidate& y)
       { return x.order != y.order ? x.order < y.order : (x.a != y.a ? x.a < y.a : x.b < y.b); });
+    previous = candidates;
+    scannedCount = roundCount;
     int insertedThisRound = 0;
     // Large rounds: in two halves of space first (HalvesPhase above), for the candidates
     // whose edge has both ends on one side; the others, and what the sides postponed, in

@@ -75,6 +75,12 @@ struct RefinementOptions
   double ceilingRatio = 1.2;
   // Bound on the number of rounds (each round splits the edges too long at its start).
   int maxRounds = 200;
+  // A round after the first finds its long edges (and grades the sizes) from the stars of the
+  // vertices inserted or resized since, and the last round's candidates, instead of a graph
+  // of every edge, when this many times their count is below the mesh's tets: the same edges,
+  // tets and sizes either way (late rounds insert a few hundred points into a mesh whose graph
+  // took longer to build than the rest of the round). 0: the graph every round.
+  double starRoundRatio = 8;
   // Lattice rounds and edge-splitting rounds of at least this many points are inserted in two
   // halves of space side by side, on two threads where the machine has two CPUs (the mesh is
   // the same on one); fewer points, and 0, in one sequence.
@@ -101,6 +107,8 @@ struct RefinementResult
   int latticeHalvesPoints = 0;  // of those, inserted by the two halves (MeshHalves)
   int latticeSecondSplits = 0;  // rounds whose rest went into halves again
   int splitHalvesPoints = 0;    // edge-splitting points inserted by the two halves
+  int starRounds = 0;           // edge-splitting rounds from stars (starRoundRatio)
+  bool starsRefused = false;    // a star missed boundary faces (a pinched domain): the graph
   double estimatedPoints = 0;   // integral of sqrt(2)/h^3 over the initial mesh (see .cxx)
   // Wall time of the parts: sizes, estimate and search grids; lattice candidates; lattice
   // insertion; edge-splitting rounds.

@@ -136,6 +136,55 @@ double scaleAndClampSize(double h, const SizeFieldOptions& options)
   return h;
 }
 
+namespace
+{
+using GradationEntry = std::pair<double, std::int32_t>;
+using GradationHeap =
+  std::priority_queue<GradationEntry, std::vector<GradationEntry>, std::greater<GradationEntry>>;
+
+// Dijkstra from every vertex in `heap` at once: a vertex popped with its final (smallest) size
+// lowers its neighbours; ties broken by id, so the result does not depend on the heap.
+// forNeighbours(v, visit) calls visit(w) for each neighbour w of v and returns false to stop.
+// onLowered(w, old size) is called when w's size is first lowered.
+template<typename ForNeighbours, typename OnLowered>
+bool gradeFromHeap(const double* points,
+  std::int32_t pointCount,
+  double slope,
+  double* h,
+  GradationHeap& heap,
+  const ForNeighbours& forNeighbours,
+  const OnLowered& onLowered)
+{
+  std::vector<char> lowered(static_cast<std::size_t>(pointCount), 0);
+  while (!heap.empty())
+  {
+    const auto [hv, v] = heap.top();
+    heap.pop();
+    if (hv != h[v])
+      continue; // stale entry
+    const double* pv = points + 3 * static_cast<std::size_t>(v);
+    const bool ok = forNeighbours(v,
+      [&](std::int32_t w)
+      {
+        const double bound = hv + slope * distance(pv, points + 3 * static_cast<std::size_t>(w));
+        if (bound < h[w])
+        {
+          if (!lowered[w])
+          {
+            lowered[w] = 1;
+            onLowered(w, h[w]);
+          }
+          h[w] = bound;
+          heap.emplace(bound, w);
+        }
+      });
+    if (!ok)
+      return false;
+  }
+  return true;
+}
+} // namespace
+
 std::int64_t limitGradation(const double* points,
   std::int32_t pointCount,
   const std::int32_t* offsets,
@@ -147,11 +196,7 @@ std::int64_t limitGradation(const double* points,
 {
   if (!(gradation > 1) || pointCount <= 0)
     return 0;
-  const double slope = gradation - 1;
-  // Dijkstra from every vertex at once: a vertex popped with its final (smallest) size lowers
-  // its neighbours; ties broken by id, so the result does not depend on the heap.
-  using Entry = std::pair<double, std::int32_t>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
+  GradationHeap heap;
   if (seeds)
   {
     for (std::int32_t i = 0; i < seedCount; ++i)
@@ -164,32 +209,64 @@ std::int64_t limitGradation(const double* points,
       if (offsets[v + 1] > offsets[v])
         heap.emplace(h[v], v);
   }
-  std::vector<char> lowered(static_cast<std::size_t>(pointCount), 0);
   std::int64_t changed = 0;
-  while (!heap.empty())
-  {
-    const auto [hv, v] = heap.top();
-    heap.pop();
-    if (hv != h[v])
-      continue; // stale entry
-    const double* pv = points + 3 * static_cast<std::size_t>(v);
-    for (std::int32_t k = offsets[v]; k < offsets[v + 1]; ++k)
+  gradeFromHeap(
+    points,
+    pointCount,
+    gradation - 1,
+    h,
+    heap,
+    [&](std::int32_t v, const auto& visit)
     {
-      const std::int32_t w = targets[k];
-      const double bound = hv + slope * distance(pv, points + 3 * static_cast<std::size_t>(w));
-      if (bound < h[w])
-      {
-        h[w] = bound;
-        if (!lowered[w])
-        {
-          lowered[w] = 1;
-          ++changed;
-        }
-        heap.emplace(bound, w);
-      }
-    }
-  }
+      for (std::int32_t k = offsets[v]; k < offsets[v + 1]; ++k)
+        visit(targets[k]);
+      return true;
+    },
+    [&](std::int32_t, double) { ++changed; });
   return changed;
+}
+
+std::int64_t limitGradationFrom(const double* points,
+  std::int32_t pointCount,
+  double gradation,
+  double* h,
+  const std::vector<std::int32_t>& seeds,
+  const std::function<bool(std::int32_t, std::vector<std::int32_t>&)>& neighbours,
+  std::vector<std::int32_t>& lowered)
+{
+  lowered.clear();
+  if (!(gradation > 1) || pointCount <= 0)
+    return 0;
+  GradationHeap heap;
+  for (std::int32_t v : seeds)
+    heap.emplace(h[v], v);
+  std::vector<std::pair<std::int32_t, double>> before; // to restore when stopped
+  std::vector<std::int32_t> list;
+  const bool done = gradeFromHeap(
+    points,
+    pointCount,
+    gradation - 1,
+    h,
+    heap,
+    [&](std::int32_t v, const auto& visit)
+    {
+      if (!neighbours(v, list))
+        return false;
+      for (std::int32_t w : list)
+        visit(w);
+      return true;
+    },
+    [&](std::int32_t w, double old)
+    {
+      lowered.push_back(w);
+      before.emplace_back(w, old);
+    });
+  if (done)
+    return static_cast<std::int64_t>(lowered.size());
+  for (const auto& [w, old] : before)
+    h[w] = old;
+  lowered.clear();
+  return -1;
 }
 
 } // namespace tetmesher

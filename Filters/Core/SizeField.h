@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace tetmesher
@@ -64,5 +65,17 @@ std::int64_t limitGradation(const double* points,
   double* h,
   const std::int32_t* seeds = nullptr,
   std::int32_t seedCount = 0);
+
+// The same from `seeds`, over the adjacency that neighbours(v, list) gives (fills `list`;
+// returns false to stop, e.g. when it cannot tell v's neighbours: the sizes lowered so far are
+// then restored and -1 returned). `lowered` gets every vertex whose size was lowered. Given
+// the same edges, the sizes come out bit for bit as from limitGradation.
+std::int64_t limitGradationFrom(const double* points,
+  std::int32_t pointCount,
+  double gradation,
+  double* h,
+  const std::vector<std::int32_t>& seeds,
+  const std::function<bool(std::int32_t, std::vector<std::int32_t>&)>& neighbours,
+  std::vector<std::int32_t>& lowered);
 
 } // namespace tetmesher

@@ -802,6 +802,94 @@ TEST(InteriorRefinement, GradationSmoothsAJump)
   EXPECT_EQ(checkRefined(s, h, before, sign), "");
 }
 
+// Two unit boxes that touch at the corner (1,1,1) only: the domain is pinched there (the
+// corner's tets are two stars).
+Surface boxesTouchingAtACorner(int n)
+{
+  Surface a = tt::box({ 0, 0, 0 }, { 1, 1, 1 }, { n, n, n });
+  Surface b = tt::box({ 1, 1, 1 }, { 2, 2, 2 }, { n, n, n });
+  Surface s;
+  std::map<std::array<double, 3>, std::int32_t> ids;
+  for (const Surface* part : { &a, &b })
+    for (std::int32_t t = 0; t < part->triangleCount(); ++t)
+    {
+      std::array<std::int32_t, 3> v;
+      for (int k = 0; k < 3; ++k)
+      {
+        const double* p = &part->points[3 * part->triangles[3 * t + k]];
+        auto [it, fresh] = ids.emplace(std::array<double, 3>{ p[0], p[1], p[2] }, s.pointCount());
+        if (fresh)
+          s.addPoint(p[0], p[1], p[2]);
+        v[k] = it->second;
+      }
+      s.addTriangle(v[0], v[1], v[2]);
+    }
+  return s;
+}
+
+// Rounds that take their edges from the stars of the vertices changed since (starRoundRatio)
+// make the mesh of rounds that take them from a graph of every edge: the same points, tets,
+// and sizes. A graded jump, sizes varying tenfold with rounds in halves, no gradation at all,
+// and a pinched domain (whose corner star, if walked, sends the rounds back to the graph).
+TEST(InteriorRefinement, StarRoundsGiveTheGraphRoundsMesh)
+{
+  struct Setup
+  {
+    const char* name;
+    Surface surface;
+    double gradation;
+    bool jump; // sizes jump: tenfold across x = 0.05, or next to the corner (1,1,1)
+    bool corner = false;
+  };
+  std::vector<Setup> setups;
+  setups.push_back({ "cube, jump", tt::cube(10), 1.3, true });
+  setups.push_back({ "inverted sphere", invertedSphere(3), 1.5, false });
+  setups.push_back({ "torus, no gradation", tt::torus(1.0, 0.35, 36, 14), 1.0, false });
+  setups.push_back({ "boxes touching at a corner", boxesTouchingAtACorner(4), 1.5, true, true });
+  for (Setup& setup : setups)
+  {
+    Case s[2];
+    std::vector<double> h[2];
+    RefinementResult r[2];
+    for (int k = 0; k < 2; ++k)
+    {
+      s[k].surface = setup.surface;
+      ASSERT_TRUE(prepare(s[k])) << setup.name;
+      h[k] = boundaryEdgeSizes(s[k].surface.points.data(),
+        s[k].surface.pointCount(),
+        s[k].surface.triangles.data(),
+        s[k].surface.triangleCount());
+      if (setup.jump)
+        for (std::int32_t v = 0; v < s[k].surface.pointCount(); ++v)
+        {
+          const double* p = &s[k].surface.points[3 * static_cast<std::size_t>(v)];
+          h[k][v] = setup.corner
+            ? (std::fabs(p[0] - 1) + std::fabs(p[1] - 1) + std::fabs(p[2] - 1) < 0.6 ? 0.04 : 0.3)
+            : (p[0] < 0.05 ? 0.03 : 0.25);
+        }
+      RefinementOptions options;
+      options.size.gradation = setup.gradation;
+      options.maxFloorRatio = setup.jump ? 0 : options.maxFloorRatio;
+      options.halvesMinPoints = 256;
+      options.starRoundRatio = k == 0 ? 0 : 1e-9; // never, and whenever a round can
+      r[k] = refineInterior(s[k].mesh, h[k], options);
+      ASSERT_TRUE(r[k].ok) << setup.name << ": " << r[k].error;
+    }
+    std::printf("[stars] %s: %d rounds, %d from stars%s, %d points\n",
+      setup.name,
+      r[1].rounds,
+      r[1].starRounds,
+      r[1].starsRefused ? " (then refused)" : "",
+      r[1].insertedPoints);
+    EXPECT_EQ(r[0].starRounds, 0) << setup.name;
+    EXPECT_GT(r[1].starRounds + (r[1].starsRefused ? 1 : 0), 0) << setup.name;
+    EXPECT_EQ(r[0].rounds, r[1].rounds) << setup.name;
+    EXPECT_TRUE(s[0].mesh.mesh.coords == s[1].mesh.mesh.coords) << setup.name << ": the points";
+    EXPECT_TRUE(s[0].mesh.mesh.tets == s[1].mesh.mesh.tets) << setup.name << ": the tets";
+    EXPECT_TRUE(h[0] == h[1]) << setup.name << ": the sizes";
+  }
+}
+
 TEST(InteriorRefinement, BackgroundFieldOverridesInterpolation)
 {
   Case s;
