@@ -196,24 +196,40 @@ std::int64_t limitGradation(const double* points,
 {
   if (!(gradation > 1) || pointCount <= 0)
     return 0;
+  // Only the vertices that lower a neighbour start: one that lowers none now would lower one
+  // only after its own size fell, and then it is pushed. The same sizes (the largest within
+  // the bound on every edge), without a heap of every vertex (fandisk at h = 0.0103: 193k
+  // pushes and pops, most of the gradation's time, for a few thousand lowered).
+  const double slope = gradation - 1;
+  auto lowersOne = [&](std::int32_t v)
+  {
+    const double* pv = points + 3 * static_cast<std::size_t>(v);
+    for (std::int32_t k = offsets[v]; k < offsets[v + 1]; ++k)
+    {
+      const std::int32_t w = targets[k];
+      if (h[v] + slope * distance(pv, points + 3 * static_cast<std::size_t>(w)) < h[w])
+        return true;
+    }
+    return false;
+  };
   GradationHeap heap;
   if (seeds)
   {
     for (std::int32_t i = 0; i < seedCount; ++i)
-      if (offsets[seeds[i] + 1] > offsets[seeds[i]])
+      if (lowersOne(seeds[i]))
         heap.emplace(h[seeds[i]], seeds[i]);
   }
   else
   {
     for (std::int32_t v = 0; v < pointCount; ++v)
-      if (offsets[v + 1] > offsets[v])
+      if (lowersOne(v))
         heap.emplace(h[v], v);
   }
   std::int64_t changed = 0;
   gradeFromHeap(
     points,
     pointCount,
-    gradation - 1,
+    slope,
     h,
     heap,
     [&](std::int32_t v, const auto& visit)

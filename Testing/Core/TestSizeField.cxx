@@ -194,6 +194,65 @@ TEST(SizeField, GradationHoldsOnEveryEdgeOfARandomGraph)
   // The smallest size is a fixed point.
   const auto m = std::min_element(original.begin(), original.end()) - original.begin();
   EXPECT_EQ(h[m], original[m]);
+
+  // The sizes are the largest within the bound on every edge, whatever lowers them in
+  // whichever order: bit for bit those of a plain relaxation over every edge until nothing
+  // changes, and of the same Dijkstra over a neighbour function from every vertex.
+  std::vector<double> relaxed = original;
+  const double slope = 1.3 - 1; // as limitGradation has it (not 0.3)
+  for (bool changed = true; changed;)
+  {
+    changed = false;
+    for (int i = 0; i < n; ++i)
+      for (std::int32_t k = off[i]; k < off[i + 1]; ++k)
+      {
+        const int j = adj[k];
+        const double dx = pts[3 * i] - pts[3 * j], dy = pts[3 * i + 1] - pts[3 * j + 1],
+                     dz = pts[3 * i + 2] - pts[3 * j + 2];
+        const double bound = relaxed[i] + slope * std::sqrt(dx * dx + dy * dy + dz * dz);
+        if (bound < relaxed[j])
+        {
+          relaxed[j] = bound;
+          changed = true;
+        }
+      }
+  }
+  EXPECT_TRUE(relaxed == h);
+  std::vector<double> fromSeeds = original;
+  std::vector<std::int32_t> all(n), lowered;
+  for (int i = 0; i < n; ++i)
+    all[i] = i;
+  const std::int64_t count = limitGradationFrom(
+    pts.data(),
+    n,
+    1.3,
+    fromSeeds.data(),
+    all,
+    [&](std::int32_t v, std::vector<std::int32_t>& list)
+    {
+      list.assign(adj.begin() + off[v], adj.begin() + off[v + 1]);
+      return true;
+    },
+    lowered);
+  EXPECT_TRUE(fromSeeds == h);
+  EXPECT_EQ(count, static_cast<std::int64_t>(lowered.size()));
+  EXPECT_GT(count, 0);
+  // A neighbour function that stops leaves the sizes as they were.
+  std::vector<double> stopped = original;
+  EXPECT_EQ(limitGradationFrom(
+              pts.data(),
+              n,
+              1.3,
+              stopped.data(),
+              all,
+              [&](std::int32_t v, std::vector<std::int32_t>& list)
+              {
+                list.assign(adj.begin() + off[v], adj.begin() + off[v + 1]);
+                return v != static_cast<std::int32_t>(m);
+              },
+              lowered),
+    -1);
+  EXPECT_TRUE(stopped == original);
 }
 
 TEST(BoundarySizeFloor, FallsAtItsSlopeFromEachFace)
