@@ -2098,8 +2098,9 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
             previous.size() + 2 * static_cast<std::size_t>(roundCount - scannedCount)) <
         static_cast<double>(mesh.liveTetCount()))
     {
-      // A failure leaves the sizes graded or as they were, and no candidates: the graph's
-      // round below then does the rest.
+      // A failure leaves no candidates, and the sizes graded, or lowered only towards what
+      // the gradation gives (from the new vertices' old neighbours): the graph's round below
+      // then does the rest, to the same sizes.
       fromStars = roundFromStars(roundCount);
       starsFailed = !fromStars;
       result.starRounds += fromStars ? 1 : 0;

@@ -108,7 +108,7 @@ struct RefinementResult
   int latticeSecondSplits = 0;  // rounds whose rest went into halves again
   int splitHalvesPoints = 0;    // edge-splitting points inserted by the two halves
   int starRounds = 0;           // edge-splitting rounds from stars (starRoundRatio)
-  bool starsRefused = false;    // a star missed boundary faces (a pinched domain): the graph
+  bool starsRefused = false;    // a star could not be listed (a pinched domain): the graph
   double estimatedPoints = 0;   // integral of sqrt(2)/h^3 over the initial mesh (see .cxx)
   // Wall time of the parts: sizes, estimate and search grids; lattice candidates; lattice
   // insertion; edge-splitting rounds.
