@@ -332,6 +332,24 @@ double fccInteriorEstimate(const RegionMesh& rm,
 
 // Two boxes [0,1]^3 and [1,2]x[0,1]^2 with n cells per side, sharing the face x = 1 (listed
 // once): two regions. sign: +1 for outer triangles, 0 for the shared ones.
+// Triangle t of `part` in `s`, its points merged with s's by their coordinates (ids).
+std::array<std::int32_t, 3> mergedTriangle(Surface& s,
+  std::map<std::array<double, 3>, std::int32_t>& ids,
+  const Surface& part,
+  std::int32_t t)
+{
+  std::array<std::int32_t, 3> v;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double* p = &part.points[3 * part.triangles[3 * t + k]];
+    auto [it, fresh] = ids.emplace(std::array<double, 3>{ p[0], p[1], p[2] }, s.pointCount());
+    if (fresh)
+      s.addPoint(p[0], p[1], p[2]);
+    v[k] = it->second;
+  }
+  return v;
+}
+
 Surface twoBoxes(int n, std::vector<int>& sign)
 {
   Surface a = tt::box({ 0, 0, 0 }, { 1, 1, 1 }, { n, n, n }, false);
@@ -344,15 +362,7 @@ Surface twoBoxes(int n, std::vector<int>& sign)
   {
     for (std::int32_t t = 0; t < part->triangleCount(); ++t)
     {
-      std::array<std::int32_t, 3> v;
-      for (int k = 0; k < 3; ++k)
-      {
-        const double* p = &part->points[3 * part->triangles[3 * t + k]];
-        auto [it, fresh] = ids.emplace(std::array<double, 3>{ p[0], p[1], p[2] }, s.pointCount());
-        if (fresh)
-          s.addPoint(p[0], p[1], p[2]);
-        v[k] = it->second;
-      }
+      const std::array<std::int32_t, 3> v = mergedTriangle(s, ids, *part, t);
       std::array<std::int32_t, 3> key = v;
       std::sort(key.begin(), key.end());
       auto found = seen.find(key);
@@ -813,15 +823,7 @@ Surface boxesTouchingAtACorner(int n)
   for (const Surface* part : { &a, &b })
     for (std::int32_t t = 0; t < part->triangleCount(); ++t)
     {
-      std::array<std::int32_t, 3> v;
-      for (int k = 0; k < 3; ++k)
-      {
-        const double* p = &part->points[3 * part->triangles[3 * t + k]];
-        auto [it, fresh] = ids.emplace(std::array<double, 3>{ p[0], p[1], p[2] }, s.pointCount());
-        if (fresh)
-          s.addPoint(p[0], p[1], p[2]);
-        v[k] = it->second;
-      }
+      const std::array<std::int32_t, 3> v = mergedTriangle(s, ids, *part, t);
       s.addTriangle(v[0], v[1], v[2]);
     }
   return s;

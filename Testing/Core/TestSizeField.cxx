@@ -222,36 +222,21 @@ TEST(SizeField, GradationHoldsOnEveryEdgeOfARandomGraph)
   std::vector<std::int32_t> all(n), lowered;
   for (int i = 0; i < n; ++i)
     all[i] = i;
-  const std::int64_t count = limitGradationFrom(
-    pts.data(),
-    n,
-    1.3,
-    fromSeeds.data(),
-    all,
-    [&](std::int32_t v, std::vector<std::int32_t>& list)
-    {
-      list.assign(adj.begin() + off[v], adj.begin() + off[v + 1]);
-      return true;
-    },
-    lowered);
+  std::int32_t stopAt = -1; // the vertex whose neighbours are not told (-1: none)
+  auto neighbours = [&](std::int32_t v, std::vector<std::int32_t>& list)
+  {
+    list.assign(adj.begin() + off[v], adj.begin() + off[v + 1]);
+    return v != stopAt;
+  };
+  const std::int64_t count =
+    limitGradationFrom(pts.data(), n, 1.3, fromSeeds.data(), all, neighbours, lowered);
   EXPECT_TRUE(fromSeeds == h);
   EXPECT_EQ(count, static_cast<std::int64_t>(lowered.size()));
   EXPECT_GT(count, 0);
   // A neighbour function that stops leaves the sizes as they were.
   std::vector<double> stopped = original;
-  EXPECT_EQ(limitGradationFrom(
-              pts.data(),
-              n,
-              1.3,
-              stopped.data(),
-              all,
-              [&](std::int32_t v, std::vector<std::int32_t>& list)
-              {
-                list.assign(adj.begin() + off[v], adj.begin() + off[v + 1]);
-                return v != static_cast<std::int32_t>(m);
-              },
-              lowered),
-    -1);
+  stopAt = static_cast<std::int32_t>(m);
+  EXPECT_EQ(limitGradationFrom(pts.data(), n, 1.3, stopped.data(), all, neighbours, lowered), -1);
   EXPECT_TRUE(stopped == original);
 }
 
