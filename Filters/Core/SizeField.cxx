@@ -158,7 +158,10 @@ bool gradeFromHeap(const double* points,
   std::vector<char> lowered(static_cast<std::size_t>(pointCount), 0);
   while (!heap.empty())
   {
-    const auto [hv, v] = heap.top();
+    // Plain locals, not a structured binding: a lambda below uses them (C++17 does not let
+    // lambdas capture bindings; clang refuses it).
+    const double hv = heap.top().first;
+    const std::int32_t v = heap.top().second;
     heap.pop();
     if (hv != h[v])
       continue; // stale entry
