@@ -88,6 +88,14 @@ public:
   }
 
   OptimizationResult run(const std::function<bool(double)>& progress);
+  // The statistics that the caller takes from elsewhere are not gathered (a scan of every
+  // tet each, ~2 ms at 200k tets): the first stage's "after" when a second stage follows
+  // (its summarizeAfter(r, later) gives them), and both of the second stage's.
+  void skipSummaries(bool before, bool after)
+  {
+    summaryBefore_ = !before;
+    summaryAfter_ = !after;
+  }
   // The size field, grown by the vertices this optimizer inserted (null without one).
   const std::vector<double>* sizes() const { return ctx_.size; }
   // Recomputes the "after" statistics (Q, dihedral, share below this optimizer's target)
@@ -223,7 +231,8 @@ private:
   int currentPass_ = 0;
   OptimizationResult res_;
   bool insertionPass_ = false; // the previous pass changed nothing: try insertion
-  int insertionBudget_ = 0;    // options.maxInsertedVertices, resolved in run()
+  bool summaryBefore_ = true, summaryAfter_ = true; // see skipSummaries
+  int insertionBudget_ = 0; // options.maxInsertedVertices, resolved in run()
   // Searches for an insertion, successful or not. Most fail, and a search costs 20-30
   // topological searches (torus at h/2: 650 searches for 93 insertions, a third of the
   // optimisation time), so they are bounded too: kInsertionSearchesPerVertex per vertex of
@@ -841,7 +850,10 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
   }
   if (ctx_.rm.region.size() < static_cast<std::size_t>(ctx_.mesh.tetCapacity()))
     ctx_.rm.region.resize(static_cast<std::size_t>(ctx_.mesh.tetCapacity()), 0);
-  summarizeBefore(res_);
+  if (summaryBefore_)
+    summarizeBefore(res_);
+  else
+    res_.tetsBefore = ctx_.mesh.liveTetCount();
   insertionBudget_ = ctx_.options.maxInsertedVertices >= 0 ? ctx_.options.maxInsertedVertices
                                                            : 10 + res_.tetsBefore / 1000;
 
@@ -972,7 +984,8 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
   res_.smoothedVertices += main_.moves.smoothedVertices;
   res_.insertedVertices += main_.moves.insertedVertices;
 
-  summarizeAfter(res_);
+  if (summaryAfter_ || !res_.ok)
+    summarizeAfter(res_);
   res_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return res_;
 }
@@ -990,6 +1003,7 @@ OptimizationResult optimizeMesh(RegionMesh& mesh,
   if (progress && dihedralStage)
     firstProgress = [&](double x) { return progress(0.5 * x); };
   Optimizer first(mesh, options, vertexSize);
+  first.skipSummaries(false, dihedralStage);
   OptimizationResult r = first.run(firstProgress);
   if (!r.ok || !dihedralStage)
     return r;
@@ -1006,6 +1020,7 @@ OptimizationResult optimizeMesh(RegionMesh& mesh,
   if (progress)
     secondProgress = [&](double x) { return progress(0.5 + 0.5 * x); };
   Optimizer second(mesh, o2, first.sizes());
+  second.skipSummaries(true, true);
   second.continueFrom(first);
   OptimizationResult r2 = second.run(secondProgress);
   r.ok = r2.ok;
