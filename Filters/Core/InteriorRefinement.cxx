@@ -1951,25 +1951,37 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   std::vector<TetId> walked;
   // The neighbours of v with their smallest tet, listed once per round; false when v's tet is
   // not known or its star misses some of its boundary faces.
+  // v's whole star in `walked`; false when v's tet is not known or the star misses some of
+  // v's boundary faces (it is one of several).
+  auto walkWholeStar = [&](VertexId v) -> bool
+  {
+    const std::size_t i = static_cast<std::size_t>(v);
+    const TetId t = vertexTet[i];
+    if (t < 0 || t >= mesh.tetCapacity() || mesh.isDeleted(t) || !tetHas(mesh, t, v))
+      return false;
+    starOf(mesh, t, v, walked);
+    if (v >= initialCount)
+      return true; // an inserted point: inside, its star a whole ball
+    std::int32_t boundaryFaces = 0;
+    for (TetId u : walked)
+      for (int k = 0; k < 4; ++k)
+        boundaryFaces += mesh.vertex(u, k) != v && mesh.neighbor(u, k) == kNoNeighbor;
+    return boundaryFaces == boundaryFacesAt[i];
+  };
   auto listStar = [&](VertexId v) -> bool
   {
     const std::size_t i = static_cast<std::size_t>(v);
     if (starStamp[i] == starEpoch)
       return true;
-    const TetId t = vertexTet[i];
-    if (t < 0 || t >= mesh.tetCapacity() || mesh.isDeleted(t) || !tetHas(mesh, t, v))
+    if (!walkWholeStar(v))
       return false;
-    starOf(mesh, t, v, walked);
     const std::int32_t first = static_cast<std::int32_t>(starEdges.size());
-    std::int32_t boundaryFaces = 0;
     for (TetId u : walked)
       for (int k = 0; k < 4; ++k)
       {
         const VertexId w = mesh.vertex(u, k);
         if (w == v)
           continue;
-        if (v < initialCount && mesh.neighbor(u, k) == kNoNeighbor)
-          ++boundaryFaces; // the face opposite w has v
         auto known = std::find_if(starEdges.begin() + first,
           starEdges.end(),
           [w](const std::pair<VertexId, TetId>& e) { return e.first == w; });
@@ -1978,11 +1990,6 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
         else
           known->second = std::min(known->second, u);
       }
-    if (v < initialCount && boundaryFaces != boundaryFacesAt[i])
-    {
-      starEdges.resize(static_cast<std::size_t>(first));
-      return false;
-    }
     starStamp[i] = starEpoch;
     starFirst[i] = first;
     starSize[i] = static_cast<std::int32_t>(starEdges.size()) - first;
@@ -2081,30 +2088,17 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       if (changedStamp[static_cast<std::size_t>(c.a)] == starEpoch ||
         changedStamp[static_cast<std::size_t>(c.b)] == starEpoch)
         continue; // listed above if still there
-      // The smallest tet of a's star with b, if any (most of these edges were split).
-      const TetId t = vertexTet[static_cast<std::size_t>(c.a)];
-      if (t < 0 || t >= mesh.tetCapacity() || mesh.isDeleted(t) || !tetHas(mesh, t, c.a))
+      // The smallest tet of a's star with b, if any (most of these edges were split): not
+      // listed, as most of these stars are read for this one edge.
+      if (!walkWholeStar(c.a))
       {
         candidates.clear();
         return false; // as above
       }
-      starOf(mesh, t, c.a, walked);
       TetId smallest = -1;
-      std::int32_t boundaryFaces = 0;
       for (TetId u : walked)
-      {
-        const bool hasB = tetHas(mesh, u, c.b);
-        if (hasB && (smallest < 0 || u < smallest))
+        if (tetHas(mesh, u, c.b) && (smallest < 0 || u < smallest))
           smallest = u;
-        if (c.a < initialCount)
-          for (int k = 0; k < 4; ++k)
-            boundaryFaces += mesh.vertex(u, k) != c.a && mesh.neighbor(u, k) == kNoNeighbor;
-      }
-      if (c.a < initialCount && boundaryFaces != boundaryFacesAt[static_cast<std::size_t>(c.a)])
-      {
-        candidates.clear();
-        return false;
-      }
       if (smallest >= 0)
         considerEdge(c.a, c.b, smallest, candidates);
     }
