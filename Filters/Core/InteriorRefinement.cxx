@@ -2020,30 +2020,13 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       markChanged(v);
     if (sizeOptions.gradation > 1)
     {
-      // The graph's rounds seed the vertices since the last gradation and their neighbours.
-      // An old neighbour w (its edges to old vertices within the bound) can only lower the new
-      // vertices next to it: that is done first here, the new vertices seeding the rest (the
-      // sizes are those of the graph's rounds: the largest within the bound on every edge,
-      // whatever lowers them in whichever order). Its stars are those the candidates need.
+      // The graph's rounds seed the vertices since the last gradation and their neighbours;
+      // here the new vertices alone, which limitGradationFrom first lowers from their
+      // neighbours: an old neighbour (its edges to old vertices within the bound) can lower
+      // only them. The same sizes. Their stars are those the candidates need.
       seeds.clear();
-      const double slope = sizeOptions.gradation - 1;
-      std::vector<std::pair<VertexId, double>> pulled;
       for (VertexId v = gradedCount; v < count; ++v)
-      {
-        if (!listStar(v))
-          return false;
-        double hv = h[v];
-        for (std::int32_t k = 0; k < starSize[v]; ++k)
-        {
-          const VertexId w = starEdges[static_cast<std::size_t>(starFirst[v] + k)].first;
-          if (w < gradedCount)
-            hv = std::min(hv, h[w] + slope * distance(mesh.point(w), mesh.point(v)));
-        }
-        pulled.emplace_back(v, hv);
         seeds.push_back(v);
-      }
-      for (const auto& [v, hv] : pulled)
-        h[v] = hv; // old neighbours' sizes only were read: the order does not matter
       const std::int64_t graded = limitGradationFrom(
         mesh.coords.data(),
         count,
@@ -2115,9 +2098,8 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
             previous.size() + 2 * static_cast<std::size_t>(roundCount - scannedCount)) <
         static_cast<double>(mesh.liveTetCount()))
     {
-      // A failure leaves no candidates, and the sizes graded, or lowered only towards what
-      // the gradation gives (from the new vertices' old neighbours): the graph's round below
-      // then does the rest, to the same sizes.
+      // A failure leaves no candidates, and the sizes as they were or graded: the graph's
+      // round below then does the rest, to the same sizes.
       fromStars = roundFromStars(roundCount);
       starsFailed = !fromStars;
       result.starRounds += fromStars ? 1 : 0;

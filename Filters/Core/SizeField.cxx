@@ -256,15 +256,46 @@ std::int64_t limitGradationFrom(const double* points,
   lowered.clear();
   if (!(gradation > 1) || pointCount <= 0)
     return 0;
+  const double slope = gradation - 1;
+  std::vector<std::pair<std::int32_t, double>> before; // to restore when stopped
+  std::vector<std::int32_t> list;
+  auto restore = [&]
+  {
+    for (auto it = before.rbegin(); it != before.rend(); ++it)
+      h[it->first] = it->second;
+    lowered.clear();
+    return std::int64_t{ -1 };
+  };
+  // Each seed first takes the bound from its neighbours (a lowering like any other: the
+  // sizes stay the largest within the bound on every edge, whichever order lowers them).
+  std::vector<char> isLowered(static_cast<std::size_t>(pointCount), 0);
+  for (std::int32_t v : seeds)
+  {
+    if (!neighbours(v, list))
+      return restore();
+    const double* pv = points + 3 * static_cast<std::size_t>(v);
+    for (std::int32_t w : list)
+    {
+      const double bound = h[w] + slope * distance(points + 3 * static_cast<std::size_t>(w), pv);
+      if (bound < h[v])
+      {
+        if (!isLowered[v])
+        {
+          isLowered[v] = 1;
+          lowered.push_back(v);
+          before.emplace_back(v, h[v]);
+        }
+        h[v] = bound;
+      }
+    }
+  }
   GradationHeap heap;
   for (std::int32_t v : seeds)
     heap.emplace(h[v], v);
-  std::vector<std::pair<std::int32_t, double>> before; // to restore when stopped
-  std::vector<std::int32_t> list;
   const bool done = gradeFromHeap(
     points,
     pointCount,
-    gradation - 1,
+    slope,
     h,
     heap,
     [&](std::int32_t v, const auto& visit)
@@ -277,15 +308,14 @@ std::int64_t limitGradationFrom(const double* points,
     },
     [&](std::int32_t w, double old)
     {
-      lowered.push_back(w);
+      if (!isLowered[w])
+      {
+        isLowered[w] = 1;
+        lowered.push_back(w);
+      }
       before.emplace_back(w, old);
     });
-  if (done)
-    return static_cast<std::int64_t>(lowered.size());
-  for (const auto& [w, old] : before)
-    h[w] = old;
-  lowered.clear();
-  return -1;
+  return done ? static_cast<std::int64_t>(lowered.size()) : restore();
 }
 
 } // namespace tetmesher

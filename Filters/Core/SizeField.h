@@ -68,8 +68,10 @@ std::int64_t limitGradation(const double* points,
 
 // The same from `seeds`, over the adjacency that neighbours(v, list) gives (fills `list`;
 // returns false to stop, e.g. when it cannot tell v's neighbours: the sizes lowered so far are
-// then restored and -1 returned). `lowered` gets every vertex whose size was lowered. Given
-// the same edges, the sizes come out bit for bit as from limitGradation.
+// then restored and -1 returned). Each seed is first lowered from its neighbours, so a vertex
+// whose only edges beyond the bound are to seeds need not be one. `lowered` gets every vertex
+// whose size was lowered. Given the same edges, the sizes come out bit for bit as from
+// limitGradation.
 std::int64_t limitGradationFrom(const double* points,
   std::int32_t pointCount,
   double gradation,
