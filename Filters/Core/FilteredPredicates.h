@@ -94,8 +94,12 @@ inline int orient3dFiltered(const double* a, const double* b, const double* c, c
 }
 
 // The in-sphere filter alone: the sign where the filter decides it, else kUndecided.
+// Shewchuk's evaluation (differences from e, the 2x2 minors of x and y, the cofactors of the
+// lift column, the lifts) and its "A" bound, one double operation at a time. insphereFilter
+// performs these very operations, four at a time; this one is the reference that tests hold
+// it to, and the evaluation where the compiler has no vector extensions.
 constexpr int kUndecided = 2;
-inline int insphereFilter(const double* a,
+inline int insphereFilterScalar(const double* a,
   const double* b,
   const double* c,
   const double* d,
@@ -146,6 +150,73 @@ inline int insphereFilter(const double* a,
     return -1;
   return kUndecided;
 }
+
+#if defined(__clang__) || (defined(__GNUC__) && __GNUC__ >= 12)
+#define TETMESHER_VECTOR_INSPHERE 1
+// insphereFilterScalar's operations in lanes (a, b, c, d): each lane performs, in the same
+// order, the operations the scalar code performs for that point, so det and the permanent are
+// the same doubles bit for bit, and so are the answers (TestPredicates checks it). Rotating the
+// lanes pairs each point with the next (minors ab, bc, cd, da) and the one after (ac, bd, and
+// their negations, which rounding leaves exact). The in-sphere test is the Delaunay kernel's
+// innermost work: one thread inserting 1M uniform points, 3.3-3.4 s -> 3.05-3.1 s. Without
+// AVX (the default target) each vector is two SSE2 registers.
+inline int insphereFilter(const double* a,
+  const double* b,
+  const double* c,
+  const double* d,
+  const double* e)
+{
+  typedef double Lanes __attribute__((vector_size(32)));
+  typedef long long Bits __attribute__((vector_size(32)));
+#define TETMESHER_NEXT(v) __builtin_shufflevector(v, v, 1, 2, 3, 0)
+#define TETMESHER_SECOND(v) __builtin_shufflevector(v, v, 2, 3, 0, 1)
+#define TETMESHER_PREVIOUS(v) __builtin_shufflevector(v, v, 3, 0, 1, 2)
+  constexpr long long kMagnitude = 0x7fffffffffffffffLL; // |x|: the sign bit cleared
+  const Bits magnitude = { kMagnitude, kMagnitude, kMagnitude, kMagnitude };
+  const Lanes x = Lanes{ a[0], b[0], c[0], d[0] } - e[0];
+  const Lanes y = Lanes{ a[1], b[1], c[1], d[1] } - e[1];
+  const Lanes z = Lanes{ a[2], b[2], c[2], d[2] } - e[2];
+  // aexbey, bexcey, cexdey, dexaey and bexaey, cexbey, dexcey, aexdey: minors ab, bc, cd, da.
+  const Lanes xNextY = x * TETMESHER_NEXT(y), nextXY = TETMESHER_NEXT(x) * y;
+  // aexcey, bexdey, cexaey, dexbey and cexaey, dexbey, aexcey, bexdey: ac, bd, -ac, -bd.
+  const Lanes xSecondY = x * TETMESHER_SECOND(y), secondXY = TETMESHER_SECOND(x) * y;
+  const Lanes minorNext = xNextY - nextXY, minorSecond = xSecondY - secondXY;
+  // abc, bcd, cda, dab: e.g. aez*bc - bez*ac + cez*ab and cez*da - dez*(-ac) + aez*cd.
+  const Lanes cofactor = (z * TETMESHER_NEXT(minorNext) - TETMESHER_NEXT(z) * minorSecond) +
+    TETMESHER_SECOND(z) * minorNext;
+  const Lanes lift = (x * x + y * y) + z * z;
+  // dlift*abc, alift*bcd, blift*cda, clift*dab.
+  const Lanes terms = TETMESHER_PREVIOUS(lift) * cofactor;
+  const double det = (terms[0] - terms[3]) + (terms[2] - terms[1]);
+  // The permanent: each lift times the sum of its cofactor's terms in magnitude.
+  const Lanes sumNext = Lanes(Bits(xNextY) & magnitude) + Lanes(Bits(nextXY) & magnitude);
+  const Lanes sumSecond = Lanes(Bits(xSecondY) & magnitude) + Lanes(Bits(secondXY) & magnitude);
+  const Lanes zAbs = Lanes(Bits(z) & magnitude);
+  const Lanes weight = (TETMESHER_SECOND(sumNext) * TETMESHER_NEXT(zAbs) +
+                         TETMESHER_NEXT(sumSecond) * TETMESHER_SECOND(zAbs)) +
+    TETMESHER_NEXT(sumNext) * TETMESHER_PREVIOUS(zAbs);
+  const Lanes weighted = weight * lift;
+  const double permanent = ((weighted[0] + weighted[1]) + weighted[2]) + weighted[3];
+#undef TETMESHER_NEXT
+#undef TETMESHER_SECOND
+#undef TETMESHER_PREVIOUS
+  const double bound = bounds::kInsphere * permanent;
+  if (det > bound)
+    return 1;
+  if (-det > bound)
+    return -1;
+  return kUndecided;
+}
+#else
+inline int insphereFilter(const double* a,
+  const double* b,
+  const double* c,
+  const double* d,
+  const double* e)
+{
+  return insphereFilterScalar(a, b, c, d, e);
+}
+#endif
 
 inline int insphereFiltered(const double* a,
   const double* b,
