@@ -93,13 +93,17 @@ inline int orient3dFiltered(const double* a, const double* b, const double* c, c
   return orient3dExact(a, b, c, d);
 }
 
-// The in-sphere filter alone: the sign where the filter decides it, else kUndecided.
-// Shewchuk's evaluation (differences from e, the 2x2 minors of x and y, the cofactors of the
-// lift column, the lifts) and its "A" bound, one double operation at a time. insphereFilter
-// performs these very operations, four at a time; this one is the reference that tests hold
-// it to, and the evaluation where the compiler has no vector extensions.
-constexpr int kUndecided = 2;
-inline int insphereFilterScalar(const double* a,
+// The in-sphere determinant of (a, b, c, d, e) as Shewchuk's filter evaluates it (differences
+// from e, the 2x2 minors of x and y, the cofactors of the lift column, the lifts), and its
+// permanent (the same expression with every term in magnitude), one double operation at a time.
+// insphereTerms performs these very operations, four at a time; this one is the reference that
+// tests hold it to, and the evaluation where the compiler has no vector extensions.
+struct InsphereTerms
+{
+  double det;
+  double permanent;
+};
+inline InsphereTerms insphereTermsScalar(const double* a,
   const double* b,
   const double* c,
   const double* d,
@@ -143,24 +147,20 @@ inline int insphereFilterScalar(const double* a,
     ((dexaeyp + aexdeyp) * cezp + (aexceyp + cexaeyp) * dezp + (cexdeyp + dexceyp) * aezp) * blift +
     ((aexbeyp + bexaeyp) * dezp + (bexdeyp + dexbeyp) * aezp + (dexaeyp + aexdeyp) * bezp) * clift +
     ((bexceyp + cexbeyp) * aezp + (cexaeyp + aexceyp) * bezp + (aexbeyp + bexaeyp) * cezp) * dlift;
-  const double bound = bounds::kInsphere * permanent;
-  if (det > bound)
-    return 1;
-  if (-det > bound)
-    return -1;
-  return kUndecided;
+  return { det, permanent };
 }
 
 #if defined(__clang__) || (defined(__GNUC__) && __GNUC__ >= 12)
 #define TETMESHER_VECTOR_INSPHERE 1
-// insphereFilterScalar's operations in lanes (a, b, c, d): each lane performs, in the same
+// insphereTermsScalar's operations in lanes (a, b, c, d): each lane performs, in the same
 // order, the operations the scalar code performs for that point, so det and the permanent are
-// the same doubles bit for bit, and so are the answers (TestPredicates checks it). Rotating the
-// lanes pairs each point with the next (minors ab, bc, cd, da) and the one after (ac, bd, and
+// the same doubles (TestPredicates checks it), but for a zero's sign, which no comparison
+// sees: a zero minor negated by the lanes stays +0, and -0 - 0 is -0 where -0 + 0 is +0. Rotating
+// the lanes pairs each point with the next (minors ab, bc, cd, da) and the one after (ac, bd, and
 // their negations, which rounding leaves exact). The in-sphere test is the Delaunay kernel's
-// innermost work: one thread inserting 1M uniform points, 3.3-3.4 s -> 3.05-3.1 s. Without
-// AVX (the default target) each vector is two SSE2 registers.
-inline int insphereFilter(const double* a,
+// innermost work: one thread inserting 1M uniform points, 3.2-3.4 s -> 2.9-3.05 s. Without AVX (the
+// default target) each vector is two SSE2 registers.
+inline InsphereTerms insphereTerms(const double* a,
   const double* b,
   const double* c,
   const double* d,
@@ -200,23 +200,39 @@ inline int insphereFilter(const double* a,
 #undef TETMESHER_NEXT
 #undef TETMESHER_SECOND
 #undef TETMESHER_PREVIOUS
-  const double bound = bounds::kInsphere * permanent;
-  if (det > bound)
+  return { det, permanent };
+}
+#else
+inline InsphereTerms insphereTerms(const double* a,
+  const double* b,
+  const double* c,
+  const double* d,
+  const double* e)
+{
+  return insphereTermsScalar(a, b, c, d, e);
+}
+#endif
+
+// The in-sphere filter alone: the sign where the filter decides it, else kUndecided.
+constexpr int kUndecided = 2;
+inline int insphereFilterSign(const InsphereTerms& terms)
+{
+  const double bound = bounds::kInsphere * terms.permanent;
+  if (terms.det > bound)
     return 1;
-  if (-det > bound)
+  if (-terms.det > bound)
     return -1;
   return kUndecided;
 }
-#else
+
 inline int insphereFilter(const double* a,
   const double* b,
   const double* c,
   const double* d,
   const double* e)
 {
-  return insphereFilterScalar(a, b, c, d, e);
+  return insphereFilterSign(insphereTerms(a, b, c, d, e));
 }
-#endif
 
 inline int insphereFiltered(const double* a,
   const double* b,
