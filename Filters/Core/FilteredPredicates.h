@@ -102,6 +102,9 @@ struct InsphereTerms
 {
   double det;
   double permanent;
+  // The cofactors of the lift column, abc, bcd, cda and dab (the 3x3 minors of the
+  // differences; see tieBreakFromMinors), for the stages that hold them exactly.
+  double cofactor[4];
 };
 inline InsphereTerms insphereTermsScalar(const double* a,
   const double* b,
@@ -147,7 +150,7 @@ inline InsphereTerms insphereTermsScalar(const double* a,
     ((dexaeyp + aexdeyp) * cezp + (aexceyp + cexaeyp) * dezp + (cexdeyp + dexceyp) * aezp) * blift +
     ((aexbeyp + bexaeyp) * dezp + (bexdeyp + dexbeyp) * aezp + (dexaeyp + aexdeyp) * bezp) * clift +
     ((bexceyp + cexbeyp) * aezp + (cexaeyp + aexceyp) * bezp + (aexbeyp + bexaeyp) * cezp) * dlift;
-  return { det, permanent };
+  return { det, permanent, { abc, bcd, cda, dab } };
 }
 
 #if defined(__clang__) || (defined(__GNUC__) && __GNUC__ >= 12)
@@ -200,7 +203,7 @@ inline InsphereTerms insphereTerms(const double* a,
 #undef TETMESHER_NEXT
 #undef TETMESHER_SECOND
 #undef TETMESHER_PREVIOUS
-  return { det, permanent };
+  return { det, permanent, { cofactor[0], cofactor[1], cofactor[2], cofactor[3] } };
 }
 #else
 inline InsphereTerms insphereTerms(const double* a,

@@ -51,25 +51,10 @@ inline int insphereSoSSmallLattice(const double* coords,
     coords + 3 * static_cast<std::size_t>(c),
     coords + 3 * static_cast<std::size_t>(d),
     coords + 3 * static_cast<std::size_t>(e) };
-  const double* pe = p[4];
-  const double aex = p[0][0] - pe[0], bex = p[1][0] - pe[0], cex = p[2][0] - pe[0],
-               dex = p[3][0] - pe[0];
-  const double aey = p[0][1] - pe[1], bey = p[1][1] - pe[1], cey = p[2][1] - pe[1],
-               dey = p[3][1] - pe[1];
-  const double aez = p[0][2] - pe[2], bez = p[1][2] - pe[2], cez = p[2][2] - pe[2],
-               dez = p[3][2] - pe[2];
-  const double ab = aex * bey - bex * aey, bc = bex * cey - cex * bey;
-  const double cd = cex * dey - dex * cey, da = dex * aey - aex * dey;
-  const double ac = aex * cey - cex * aey, bd = bex * dey - dex * bey;
-  const double abc = aez * bc - bez * ac + cez * ab;
-  const double bcd = bez * cd - cez * bd + dez * bc;
-  const double cda = cez * da + dez * ac + aez * cd;
-  const double dab = dez * ab + aez * bd + bez * da;
-  const double alift = aex * aex + aey * aey + aez * aez;
-  const double blift = bex * bex + bey * bey + bez * bez;
-  const double clift = cex * cex + cey * cey + cez * cez;
-  const double dlift = dex * dex + dey * dey + dez * dez;
-  const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+  // Exact in any order of operations (no operation rounds), so the filter's evaluation in
+  // lanes serves; the permanent it would add is dead code here.
+  const InsphereTerms terms = insphereTerms(p[0], p[1], p[2], p[3], p[4]);
+  const double det = terms.det;
   if (det != 0)
     return det > 0 ? 1 : -1;
   // The tie break from the minors, exact here (FilteredPredicates.h).
@@ -77,7 +62,8 @@ inline int insphereSoSSmallLattice(const double* coords,
   if (perturbationIds)
     for (VertexId& id : ids)
       id = perturbationIds[id];
-  return tieBreakFromMinors(abc, bcd, cda, dab, abc - bcd + cda - dab, ids);
+  const double* m = terms.cofactor;
+  return tieBreakFromMinors(m[0], m[1], m[2], m[3], m[0] - m[1] + m[2] - m[3], ids);
 }
 
 } // namespace predicates

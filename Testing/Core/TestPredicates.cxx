@@ -323,9 +323,9 @@ TEST(Predicates, UnitSphereAndWideSpans)
 }
 
 // insphereTerms evaluates in vector lanes what insphereTermsScalar evaluates one operation at
-// a time: det and the permanent must be the same doubles for every input (a zero's sign aside,
-// which no comparison sees; NaN where the scalar has NaN), so that the filter answers the same
-// and the meshes do not depend on which one runs. Random, nearly co-spherical, repeated,
+// a time: det, the permanent and the cofactors must be the same doubles for every input (a zero's
+// sign aside, which no comparison sees; NaN where the scalar has NaN), so that the filter answers
+// the same and the meshes do not depend on which one runs. Random, nearly co-spherical, repeated,
 // subnormal and huge (overflowing) points.
 TEST(Predicates, VectorInsphereTermsAreTheScalarOnes)
 {
@@ -360,6 +360,9 @@ TEST(Predicates, VectorInsphereTermsAreTheScalarOnes)
       << "case " << i << ": " << vector.det << " against " << scalar.det;
     ASSERT_TRUE(same(vector.permanent, scalar.permanent))
       << "case " << i << ": " << vector.permanent << " against " << scalar.permanent;
+    for (int k = 0; k < 4; ++k)
+      ASSERT_TRUE(same(vector.cofactor[k], scalar.cofactor[k]))
+        << "case " << i << ", cofactor " << k;
     undecided += predicates::insphereFilterSign(scalar) == predicates::kUndecided;
   }
   // The near-degenerate kinds reach the undecided answer too.
