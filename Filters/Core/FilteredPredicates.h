@@ -154,7 +154,6 @@ inline InsphereTerms insphereTermsScalar(const double* a,
 }
 
 #if defined(__clang__) || (defined(__GNUC__) && __GNUC__ >= 12)
-#define TETMESHER_VECTOR_INSPHERE 1
 // insphereTermsScalar's operations in lanes (a, b, c, d): each lane performs, in the same
 // order, the operations the scalar code performs for that point, so det and the permanent are
 // the same doubles (TestPredicates checks it), but for a zero's sign, which no comparison
