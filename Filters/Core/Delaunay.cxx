@@ -504,7 +504,9 @@ bool growCavityFast(TetMesh& mesh, VertexId v, TetId start, InsertionWorkspace& 
         VertexId* uv = tets + 4 * static_cast<std::size_t>(u);
         if (hasMark(uv, 2))
           continue; // internal face
-        if (Partitioned && !hasMark(uv, 3) && !ws.partition->ownsTet(uv))
+        // Cavity tets are all the side's, so u's three vertices on the shared face are too:
+        // u is the side's iff its apex is (one coordinate read instead of four).
+        if (Partitioned && !hasMark(uv, 3) && !ws.partition->owns(unmarked(uv[faceIndex(n)])))
         {
           if (insphereOf(ws, coords, uv[0], uv[1], uv[2], uv[3], v) > 0)
           {
@@ -580,8 +582,9 @@ bool growCavityChecked(TetMesh& mesh,
         const TetId u = faceTet(n);
         constrained = constrained || ((flags[u] >> faceIndex(n)) & 1u);
         const VertexId* uv = tets + 4 * static_cast<std::size_t>(u);
+        // As in growCavityFast: u is the side's iff its apex across the shared face is.
         if (Partitioned && !constrained && !(flags[u] & (kInCavity | kRejected)) &&
-          !ws.partition->ownsTet(uv))
+          !ws.partition->owns(uv[faceIndex(n)]))
         {
           // The other side may read this tet: no mark. In conflict, the cavity would cross
           // into it; else its face is a boundary face, below (never kInCavity).
