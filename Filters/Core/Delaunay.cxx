@@ -192,7 +192,8 @@ __attribute__((always_inline)) inline int insphereOf(const InsertionWorkspace& w
   VertexId d,
   VertexId e)
 {
-  if (std::max({ a, b, c, d, e }) < ws.smallLatticeVertices)
+  // The common case, no lattice, by one comparison rather than a maximum of five ids.
+  if (ws.smallLatticeVertices > 0 && std::max({ a, b, c, d, e }) < ws.smallLatticeVertices)
     return predicates::insphereSoSSmallLattice(coords, a, b, c, d, e, ws.perturbationIds);
   return predicates::insphereSoSFiltered(coords, a, b, c, d, e, ws.perturbationIds);
 }
@@ -219,7 +220,7 @@ inline int faceOrientOf(const TetMesh& mesh,
   const VertexId* tv = &mesh.tets[4 * static_cast<std::size_t>(t)];
   const VertexId a = tv[kFaceVertices[f][0]], b = tv[kFaceVertices[f][1]],
                  c = tv[kFaceVertices[f][2]];
-  if (std::max({ a, b, c }) < smallLatticeVertices)
+  if (smallLatticeVertices > 0 && std::max({ a, b, c }) < smallLatticeVertices)
     return predicates::orient3dSmallLattice(
       pointOf(coords, a), pointOf(coords, b), pointOf(coords, c), p);
   return predicates::orient3dFiltered(
