@@ -121,13 +121,14 @@ struct InsertionWorkspace
     FaceRef face;
   };
 
-  std::vector<TetId> cavity;
-  std::vector<TetId> rejected;
+  // Sized ahead and filled by index in fast mode (growCavityFast).
+  FlatArray<TetId> cavity;
+  FlatArray<TetId> rejected;
   std::vector<TetId> cone; // directed gluing: the new tet of each boundary face
   // Checked mode: a constrained face has the cavity on both sides (the cavity reached around
   // it), so its edges are on more than two boundary faces and fillCavity glues pairwise.
   bool internalConstraint = false;
-  std::vector<BoundaryFace> boundary;
+  FlatArray<BoundaryFace> boundary;
   std::vector<EdgeSlot> edgeTable = std::vector<EdgeSlot>(512, EdgeSlot{ 0, -1, -1, 0 });
   std::uint32_t edgeStamp = 0;
   // Fast mode's gluing by local vertex numbers: each boundary vertex of the cavity gets a
@@ -481,64 +482,92 @@ bool growCavityFast(TetMesh& mesh, VertexId v, TetId start, InsertionWorkspace& 
   const double* coords = mesh.coords.data();
   const FaceRef* neighbors = mesh.neighbors.data();
   VertexId* tets = mesh.tets.data();
-  ws.cavity.clear();
-  ws.rejected.clear();
-  ws.boundary.clear();
+  // The in-sphere outcome is a coin flip, and a mispredicted branch on it waits for the whole
+  // test: the lists are written at their counts and the counts advanced by the outcome, so
+  // that the tests of one tet's neighbours overlap. Each list has room for four more entries
+  // before a tet's faces are read.
+  auto& cavity = ws.cavity;
+  auto& rejected = ws.rejected;
+  auto& boundary = ws.boundary;
+  cavity.resize(std::max<std::size_t>(cavity.capacity(), 64));
+  rejected.resize(std::max<std::size_t>(rejected.capacity(), 64));
+  boundary.resize(std::max<std::size_t>(boundary.capacity(), 64));
+  std::size_t cavityCount = 1, rejectedCount = 0, boundaryCount = 0;
   setMark(tets + 4 * static_cast<std::size_t>(start), 3);
   setMark(tets + 4 * static_cast<std::size_t>(start), 2);
-  ws.cavity.push_back(start);
-  for (std::size_t i = 0; i < ws.cavity.size(); ++i)
+  cavity[0] = start;
+  for (std::size_t i = 0; i < cavityCount; ++i)
   {
-    const TetId c = ws.cavity[i];
+    if (cavity.size() < cavityCount + 4)
+      cavity.resize(2 * cavity.size());
+    if (rejected.size() < rejectedCount + 4)
+      rejected.resize(2 * rejected.size());
+    if (boundary.size() < boundaryCount + 4)
+      boundary.resize(2 * boundary.size());
+    const TetId c = cavity[i];
     const FaceRef* cn = neighbors + 4 * static_cast<std::size_t>(c);
     // Issue the four neighbours' loads together rather than one insphere test apart.
     for (int f = 0; f < 4; ++f)
       if (cn[f] != kNoNeighbor)
         __builtin_prefetch(tets + 4 * static_cast<std::size_t>(faceTet(cn[f])));
+    const VertexId* tv = tets + 4 * static_cast<std::size_t>(c);
     for (int f = 0; f < 4; ++f)
     {
       const FaceRef n = cn[f];
-      if (n != kNoNeighbor)
+      // The face, written ahead: it is kept when the count moves past it.
+      InsertionWorkspace::BoundaryFace& face = boundary[boundaryCount];
+      face.v[0] = unmarked(tv[kFaceVertices[f][0]]);
+      face.v[1] = unmarked(tv[kFaceVertices[f][1]]);
+      face.v[2] = unmarked(tv[kFaceVertices[f][2]]);
+      face.outside = n;
+      face.constrained = false;
+      if (n == kNoNeighbor)
       {
-        // An lvalue: push_back(const T&) is inlined, the rvalue one went out of line (2.5%).
-        const TetId u = faceTet(n);
-        VertexId* uv = tets + 4 * static_cast<std::size_t>(u);
-        if (hasMark(uv, 2))
-          continue; // internal face
-        // Cavity tets are all the side's, so u's three vertices on the shared face are too:
-        // u is the side's iff its apex is (one coordinate read instead of four).
-        if (Partitioned && !hasMark(uv, 3) && !ws.partition->owns(unmarked(uv[faceIndex(n)])))
-        {
-          if (insphereOf(ws, coords, uv[0], uv[1], uv[2], uv[3], v) > 0)
-          {
-            unmarkCavity(tets, ws);
-            return false;
-          }
-        }
-        else if (!hasMark(uv, 3))
-        {
-          setMark(uv, 3);
-          if (insphereOf(ws, coords, uv[0], uv[1], uv[2], unmarked(uv[3]), v) > 0)
-          {
-            setMark(uv, 2);
-            __builtin_prefetch(neighbors + 4 * static_cast<std::size_t>(u));
-            ws.cavity.push_back(u);
-            continue;
-          }
-          ws.rejected.push_back(u);
-        }
-        // The new tet glued here will write the outside tet's neighbour entry.
-        __builtin_prefetch(neighbors + n, 1);
+        ++boundaryCount;
+        continue;
       }
-      const VertexId* tv = tets + 4 * static_cast<std::size_t>(c);
-      ws.boundary.push_back({ { unmarked(tv[kFaceVertices[f][0]]),
-                                unmarked(tv[kFaceVertices[f][1]]),
-                                unmarked(tv[kFaceVertices[f][2]]) },
-        n,
-        false });
+      const TetId u = faceTet(n);
+      VertexId* uv = tets + 4 * static_cast<std::size_t>(u);
+      if (hasMark(uv, 2))
+        continue; // internal face
+      // The new tet glued here will write the outside tet's neighbour entry.
+      __builtin_prefetch(neighbors + n, 1);
+      if (hasMark(uv, 3))
+      {
+        ++boundaryCount; // tested before, not in the cavity
+        continue;
+      }
+      // Cavity tets are all the side's, so u's three vertices on the shared face are too:
+      // u is the side's iff its apex across the shared face is (one coordinate read instead
+      // of four). Not the side's: tested without a mark, since the other side may read it.
+      if (Partitioned && !ws.partition->owns(unmarked(uv[faceIndex(n)])))
+      {
+        if (insphereOf(ws, coords, uv[0], uv[1], uv[2], uv[3], v) > 0)
+        {
+          cavity.resize(cavityCount);
+          rejected.resize(rejectedCount);
+          unmarkCavity(tets, ws);
+          return false;
+        }
+        ++boundaryCount;
+        continue;
+      }
+      setMark(uv, 3);
+      const bool conflict = insphereOf(ws, coords, uv[0], uv[1], uv[2], unmarked(uv[3]), v) > 0;
+      uv[2] = static_cast<VertexId>(
+        static_cast<std::uint32_t>(uv[2]) | (static_cast<std::uint32_t>(conflict) << 31));
+      cavity[cavityCount] = u;
+      rejected[rejectedCount] = u;
+      cavityCount += conflict;
+      rejectedCount += !conflict;
+      boundaryCount += !conflict;
+      __builtin_prefetch(neighbors + 4 * static_cast<std::size_t>(u));
     }
   }
-  for (TetId r : ws.rejected)
+  cavity.resize(cavityCount);
+  rejected.resize(rejectedCount);
+  boundary.resize(boundaryCount);
+  for (TetId r : rejected)
   {
     VertexId* rv = tets + 4 * static_cast<std::size_t>(r);
     rv[3] = unmarked(rv[3]);
