@@ -1,6 +1,7 @@
-// Hilbert keys by Skilling's transpose algorithm (J. Skilling, "Programming the Hilbert
-// curve", AIP Conf. Proc. 707, 2004): undo the per-level rotations/reflections, Gray-code
-// the result, then interleave the bits of the three coordinates from the most significant.
+// Hilbert keys of Skilling's transpose algorithm (J. Skilling, "Programming the Hilbert
+// curve", AIP Conf. Proc. 707, 2004), computed level by level from a state table instead of
+// by his per-level bit operations on whole words: the same keys (the test compares them with
+// the transpose algorithm itself) for about a sixth of the instructions.
 #include "HilbertSort.h"
 
 #include "HugePages.h"
@@ -8,6 +9,7 @@
 #include "RadixSort.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -27,39 +29,87 @@ inline std::uint64_t spreadBits(std::uint32_t x)
   v = (v | (v << 2)) & 0x1249249249249249ULL;
   return v;
 }
+
+// Skilling's algorithm, from the coarsest level down, reflects or swaps the *lower* bits of
+// the axes by the bits of each level; then Gray-codes each level's three bits and flips every
+// level by the parity of the Gray-coded axis-2 bits above it. So a level's key digit depends
+// on its own three bits and on a state: the signed permutation of the axes that the levels
+// above applied (axis j now holds original axis perm[j], complemented when flip bit j is
+// set: 6 x 8) and that parity (x 2), 96 states. kHilbertLevels[8 * state + octant] is
+// 8 * (next state) + digit, octant and digit as x y z bits from the most significant.
+constexpr int kHilbertStates = 96;
+constexpr std::array<std::array<int, 3>, 6> kAxisPermutations = {
+  { { 0, 1, 2 }, { 0, 2, 1 }, { 1, 0, 2 }, { 1, 2, 0 }, { 2, 0, 1 }, { 2, 1, 0 } }
+};
+
+constexpr std::array<std::uint16_t, 8 * kHilbertStates> makeHilbertLevels()
+{
+  std::array<std::uint16_t, 8 * kHilbertStates> table{};
+  for (int state = 0; state < kHilbertStates; ++state)
+    for (int octant = 0; octant < 8; ++octant)
+    {
+      const int parity = state & 1;
+      int flip[3] = { (state >> 1) & 1, (state >> 2) & 1, (state >> 3) & 1 };
+      int perm[3] = { kAxisPermutations[static_cast<std::size_t>(state >> 4)][0],
+        kAxisPermutations[static_cast<std::size_t>(state >> 4)][1],
+        kAxisPermutations[static_cast<std::size_t>(state >> 4)][2] };
+      const int original[3] = { (octant >> 2) & 1, (octant >> 1) & 1, octant & 1 };
+      int bit[3] = { 0, 0, 0 }; // this level's bits of the axes as the levels above left them
+      for (int j = 0; j < 3; ++j)
+        bit[j] = original[perm[j]] ^ flip[j];
+      const int gray0 = bit[0], gray1 = bit[1] ^ gray0, gray2 = bit[2] ^ gray1;
+      const int digit = ((gray0 ^ parity) << 2) | ((gray1 ^ parity) << 1) | (gray2 ^ parity);
+      // This level's operations on the lower bits, axis by axis: a set bit reflects axis 0,
+      // a clear one swaps axes 0 and i.
+      for (int i = 0; i < 3; ++i)
+        if (bit[i])
+          flip[0] ^= 1;
+        else
+        {
+          const int p = perm[0], f = flip[0];
+          perm[0] = perm[i];
+          flip[0] = flip[i];
+          perm[i] = p;
+          flip[i] = f;
+        }
+      int permIndex = 0;
+      while (kAxisPermutations[static_cast<std::size_t>(permIndex)][0] != perm[0] ||
+        kAxisPermutations[static_cast<std::size_t>(permIndex)][1] != perm[1])
+        ++permIndex;
+      const int next =
+        (((permIndex << 3) | (flip[2] << 2) | (flip[1] << 1) | flip[0]) << 1) | (parity ^ gray2);
+      table[static_cast<std::size_t>(8 * state + octant)] =
+        static_cast<std::uint16_t>(8 * next + digit);
+    }
+  return table;
+}
+
+constexpr std::array<std::uint16_t, 8 * kHilbertStates> kHilbertLevels = makeHilbertLevels();
+
+// Inlined where `bits` is a constant, so that the level loop unrolls.
+inline std::uint64_t hilbertKey(std::uint32_t x, std::uint32_t y, std::uint32_t z, int bits)
+{
+  const std::uint32_t used = (1u << bits) - 1;
+  // Bit b of x, y, z at bits 3b + 2, 3b + 1, 3b: each level's octant in three bits.
+  const std::uint64_t octants =
+    (spreadBits(x & used) << 2) | (spreadBits(y & used) << 1) | spreadBits(z & used);
+  std::uint64_t key = 0;
+  unsigned state8 = 0; // 8 * state; the start is the identity with parity 0
+#pragma GCC unroll 21
+  for (int level = bits - 1; level >= 0; --level)
+  {
+    const unsigned entry =
+      kHilbertLevels[state8 | static_cast<unsigned>((octants >> (3 * level)) & 7u)];
+    key = (key << 3) | (entry & 7u);
+    state8 = entry & ~7u;
+  }
+  return key;
+}
 } // namespace
 
 std::uint64_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z, int bits)
 {
-  std::uint32_t axes[3] = { x, y, z };
-  const std::uint32_t top = 1u << (bits - 1);
-  // Inverse undo of the curve's rotations, level by level from the coarsest.
-  for (std::uint32_t q = top; q > 1; q >>= 1)
-  {
-    const std::uint32_t lowerMask = q - 1;
-    // Branch-free (the bit tested is a coin flip on random points): when bit q of axis i is
-    // set, reflect the low bits of axis 0; otherwise swap the low bits of axes 0 and i.
-    for (int i = 0; i < 3; ++i)
-    {
-      const std::uint32_t set = 0u - static_cast<std::uint32_t>((axes[i] & q) != 0);
-      const std::uint32_t t = (axes[0] ^ axes[i]) & lowerMask & ~set;
-      axes[0] ^= (lowerMask & set) ^ t;
-      axes[i] ^= t;
-    }
-  }
-  // Gray encoding.
-  for (int i = 1; i < 3; ++i)
-    axes[i] ^= axes[i - 1];
-  std::uint32_t t = 0;
-  for (std::uint32_t q = top; q > 1; q >>= 1)
-    t ^= (q - 1) & (0u - static_cast<std::uint32_t>((axes[2] & q) != 0));
-  for (int i = 0; i < 3; ++i)
-    axes[i] ^= t;
-  // Interleave: bit b of axis 0 is the most significant of the three at level b, i.e. key bit
-  // 3b + 2 (axis 1: 3b + 1, axis 2: 3b).
-  const std::uint32_t used = (1u << bits) - 1;
-  return (spreadBits(axes[0] & used) << 2) | (spreadBits(axes[1] & used) << 1) |
-    spreadBits(axes[2] & used);
+  return hilbertKey(x, y, z, bits);
 }
 
 namespace
@@ -161,7 +211,7 @@ void hilbertSort(const double* coords, VertexId* first, VertexId* last, bool two
           const double c = (gathered[3 * i + k] - box.lo[k]) * box.scale;
           g[k] = static_cast<std::uint32_t>(std::min(c, maxCell));
         }
-        keyed[i] = { hilbertIndex(g[0], g[1], g[2], kBits), first[i] };
+        keyed[i] = { hilbertKey(g[0], g[1], g[2], kBits), first[i] };
       }
     });
   const auto byKeyThenId = [](const Keyed& a, const Keyed& b)

@@ -563,8 +563,9 @@ TEST(Delaunay, CoordinatesBeyondTheExactRangeAreRefused)
   EXPECT_TRUE(buildDelaunay(tiny).ok);
 }
 
-// The branch-free Hilbert keys must equal the textbook transpose algorithm (the insertion
-// order, hence every tet id, depends on them).
+// The table-driven Hilbert keys must equal the textbook transpose algorithm (the insertion
+// order, hence every tet id, depends on them): every point of the grids up to 2^6 per axis,
+// then random points up to 21 bits.
 TEST(Delaunay, HilbertKeysMatchTheTransposeAlgorithm)
 {
   auto reference = [](std::uint32_t x, std::uint32_t y, std::uint32_t z, int bits)
@@ -595,11 +596,16 @@ TEST(Delaunay, HilbertKeysMatchTheTransposeAlgorithm)
         key = (key << 1) | (((axes[i] ^ t) >> b) & 1u);
     return key;
   };
+  for (int bits = 1; bits <= 6; ++bits)
+    for (std::uint32_t x = 0; x < (1u << bits); ++x)
+      for (std::uint32_t y = 0; y < (1u << bits); ++y)
+        for (std::uint32_t z = 0; z < (1u << bits); ++z)
+          ASSERT_EQ(hilbertIndex(x, y, z, bits), reference(x, y, z, bits)) << bits;
   std::mt19937 gen(7);
   for (int bits = 1; bits <= 21; ++bits)
   {
     const std::uint32_t mask = (1u << bits) - 1;
-    for (int k = 0; k < 2000; ++k)
+    for (int k = 0; k < 20000; ++k)
     {
       const std::uint32_t x = gen() & mask, y = gen() & mask, z = gen() & mask;
       ASSERT_EQ(hilbertIndex(x, y, z, bits), reference(x, y, z, bits)) << bits;
