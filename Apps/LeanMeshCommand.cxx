@@ -1,7 +1,7 @@
-// `tetmesher mesh` without VTK: .off, .stl or .vtp in, .vtu (or .msh, TetGen files) out,
-// the core's whole job (meshSurface, as vtkTetMesher runs it) in between; polygons are
-// triangulated as vtkTetMesher does (triangulatePolygon). VTK's ~28 libraries are loaded
-// (libtetmesherVtk.so) only for what this path leaves to them: other formats, a background
+// `tetmesher mesh` without VTK: .off, .stl, .vtp, TetGen's or Gmsh's surface files in, .vtu (or
+// .msh, TetGen files) out, the core's whole job (meshSurface, as vtkTetMesher runs it) in between;
+// polygons are triangulated as vtkTetMesher does (triangulatePolygon). VTK's ~28 libraries are
+// loaded (libtetmesherVtk.so) only for what this path leaves to them: other formats, a background
 // mesh, cells of fewer than 3 points, triangle strips, a .vtp encoding ReadVtp declines, an
 // .stl ReadStl declines, and --with-vtk.
 #include "CommandLine.h"
@@ -9,6 +9,7 @@
 #include "MeshOptions.h"
 #include "MeshReport.h"
 #include "PolygonTriangulation.h"
+#include "SolverSurfaceFiles.h"
 #include "SurfaceFiles.h"
 #include "SurfaceMeshing.h"
 
@@ -112,7 +113,9 @@ int RunMesh(int argc, char* argv[])
   const std::string inExt = LowerExtension(options.input);
   const std::string outExt = LowerExtension(options.output);
   if (options.withVtk || (outExt != ".vtu" && !IsExportExtension(outExt)) ||
-    !options.background.empty() || (inExt != ".off" && inExt != ".vtp" && inExt != ".stl"))
+    !options.background.empty() ||
+    (inExt != ".off" && inExt != ".vtp" && inExt != ".stl" && inExt != ".msh" &&
+      !IsTetGenSurfaceExtension(inExt)))
     return MeshWithVtk(options);
   return ReportingFileErrors(
     [&]
@@ -120,8 +123,13 @@ int RunMesh(int argc, char* argv[])
       StageClock clock(options.processStart);
       RequireReadableFile(options.input);
       SurfaceData surface;
+      std::string readingNotes; // what the file holds but the mesh does not use
       if (inExt == ".off")
         surface = ReadOff(options.input);
+      else if (IsTetGenSurfaceExtension(inExt))
+        surface = ReadTetGenSurface(options.input, readingNotes);
+      else if (inExt == ".msh")
+        surface = ReadGmshSurface(options.input);
       else if (inExt == ".stl" ? !ReadStl(options.input, surface)
                                : !ReadVtp(options.input, surface))
         return MeshWithVtk(options);
@@ -205,7 +213,7 @@ int RunMesh(int argc, char* argv[])
       };
       summary.histogram = mesh.quality.histogram;
       summary.seconds = seconds;
-      summary.warnings = mesh.warnings;
+      summary.warnings = readingNotes + mesh.warnings;
       ReportMesh(options, clock, summary);
       return 0;
     });

@@ -48,7 +48,8 @@ int RunMeshWithVtk(const MeshOptions& o)
     [&o]
     {
       StageClock clock(o.processStart);
-      vtkSmartPointer<vtkPolyData> surface = ReadSurface(o.input);
+      std::string readingNotes; // what the file holds but the mesh does not use
+      vtkSmartPointer<vtkPolyData> surface = ReadSurface(o.input, &readingNotes);
       clock.Lap("reading");
       vtkNew<vtkTetMesher> mesher;
       std::string sizeArray = o.sizeArray;
@@ -116,7 +117,7 @@ int RunMeshWithVtk(const MeshOptions& o)
       summary.field = [mesh](const char* name) { return FieldValue(mesh, name); };
       summary.histogram = HistogramCounts(mesher->GetHistogramOutput());
       summary.seconds = seconds;
-      summary.warnings = mesher->GetLastWarnings();
+      summary.warnings = readingNotes + mesher->GetLastWarnings();
       ReportMesh(o, clock, summary);
       return 0;
     });

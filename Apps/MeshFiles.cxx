@@ -1,7 +1,9 @@
 #include "MeshFiles.h"
+
 #include "MeshExport.h"
 #include "MeshReport.h"
 #include "Report.h"
+#include "SolverSurfaceFiles.h"
 
 #include "vtkAbstractPolyDataReader.h"
 #include "vtkAlgorithm.h"
@@ -308,10 +310,9 @@ vtkSmartPointer<vtkUnstructuredGrid> ReadGmsh(const std::string& path)
   return grid;
 }
 
-// An .off surface (ReadOff of the lean path) as vtkPolyData.
-vtkSmartPointer<vtkPolyData> ReadOffSurface(const std::string& path)
+// A surface of the lean path's readers as vtkPolyData.
+vtkSmartPointer<vtkPolyData> PolyDataOf(const SurfaceData& data)
 {
-  const SurfaceData data = ReadOff(path);
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(data.PointCount());
@@ -368,14 +369,23 @@ vtkSmartPointer<vtkDataSet> ReadVolumeMesh(const std::string& path)
   Fail(path, "unknown file type '" + ext + "' (use .vtu, .vtk, .node/.ele or .msh)");
 }
 
-vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path)
+vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path, std::string* notes)
 {
   const std::string ext = LowerExtension(path);
   RequireReadableFile(path);
   vtkSmartPointer<vtkPolyData> surface;
   if (ext == ".off")
   {
-    return ReadOffSurface(path);
+    return PolyDataOf(ReadOff(path));
+  }
+  if (IsTetGenSurfaceExtension(ext))
+  {
+    std::string unused;
+    return PolyDataOf(ReadTetGenSurface(path, notes ? *notes : unused));
+  }
+  if (ext == ".msh")
+  {
+    return PolyDataOf(ReadGmshSurface(path));
   }
   if (ext == ".stl" || ext == ".obj" || ext == ".ply")
   {
@@ -401,7 +411,9 @@ vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path)
   }
   else
   {
-    Fail(path, "unknown surface type '" + ext + "' (use .stl .obj .ply .vtp .vtk .off)");
+    Fail(path,
+      "unknown surface type '" + ext +
+        "' (use .stl .obj .ply .vtp .vtk .off, TetGen .smesh .poly .face or Gmsh .msh)");
   }
   return surface;
 }

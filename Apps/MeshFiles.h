@@ -1,6 +1,7 @@
 // Reading and writing the files the `tetmesher` command line accepts: whatever VTK reads
 // (.vtu .vtk .vtp .stl .obj .ply), plus the formats of the meshers users compare us with:
-// TetGen .node/.ele and Gmsh ASCII .msh (versions 2.2 and 4.1), and .off surfaces.
+// TetGen .node/.ele and Gmsh ASCII .msh (versions 2.2 and 4.1) meshes, TetGen .smesh .poly
+// .face and Gmsh .msh surfaces, and .off surfaces.
 #pragma once
 
 #include "SurfaceFiles.h"
@@ -21,8 +22,9 @@ namespace cli
 // Reads a volume mesh. Throws FileError.
 vtkSmartPointer<vtkDataSet> ReadVolumeMesh(const std::string& path);
 
-// Reads a triangulated surface. Throws FileError.
-vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path);
+// Reads a triangulated surface. Throws FileError. `notes`, when given, receives what the file
+// holds but the mesh does not use (SolverSurfaceFiles.h), one line each.
+vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path, std::string* notes = nullptr);
 
 // Writes an unstructured grid (.vtu or legacy .vtk by extension). Throws FileError.
 // .vtu: raw appended binary, zlib-compressed when `compress`; .vtk: legacy binary.

@@ -3,7 +3,8 @@
 //   tetmesher mesh SURFACE -o OUT.vtu [options]
 // Exit status: 0 success, 1 bad input or failure (the message names file and defect),
 // 2 wrong usage.
-// The executable does not link VTK: `mesh` from .off/.vtp/.stl to .vtu runs the core
+// The executable does not link VTK: `mesh` from .off/.vtp/.stl (and TetGen's and Gmsh's
+// surface files) to .vtu runs the core
 // directly (LeanMeshCommand.cxx); the rest is in libtetmesherVtk.so, loaded when needed.
 #include "CommandLine.h"
 
@@ -20,7 +21,8 @@ commands:
   quality MESH   print the quality summary of a tetrahedral mesh
                  (.vtu .vtk, TetGen .node/.ele, Gmsh ASCII .msh)
   mesh SURFACE   tetrahedralize a closed triangulated surface
-                 (.stl .obj .ply .vtp .vtk .off), boundary kept exactly;
+                 (.stl .obj .ply .vtp .vtk .off, TetGen .smesh .poly
+                 .face, Gmsh .msh), boundary kept exactly;
                  writes .vtu .vtk, Gmsh .msh, TetGen .node/.ele/.face
 
 Run 'tetmesher COMMAND --help' for the options of a command.

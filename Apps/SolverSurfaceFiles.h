@@ -1,0 +1,37 @@
+// Surfaces in the files of the meshers our users come from, for `tetmesher mesh`: TetGen's
+// .smesh, .poly and .face (with its .node), Gmsh's ASCII .msh (formats 2.2 and 4.1). Read
+// without VTK, into the SurfaceData of the other readers, so both paths of the command line
+// mesh them alike.
+//
+// Point ids are the files' points in their order (every point, used by a facet or not, as
+// TetGen meshes them); input cell ids count the polygons read, in file order (TetGen: the
+// facets, or the polygons of .poly facets; Gmsh: its triangles and quadrangles). What the
+// mesh cannot honour is refused by name rather than dropped: TetGen's hole points, facets
+// with holes or inner segments, Gmsh's curved (second-order) elements, binary files.
+#pragma once
+
+#include "SurfaceFiles.h"
+
+#include <string>
+
+namespace tetmesher
+{
+namespace cli
+{
+
+// .smesh, .poly, .face (lower case, with the dot).
+bool IsTetGenSurfaceExtension(const std::string& lowerExtension);
+
+// TetGen's .smesh, .poly or .face, taking the points from NAME.node when the file lists none
+// (.face always). The point numbering starts at the first point's number (0 or 1), as
+// TetGen's does. `notes` receives what was read but not used (a region list, markers are
+// kept out silently), one line each. Throws FileError naming the file, line and item.
+SurfaceData ReadTetGenSurface(const std::string& path, std::string& notes);
+
+// The triangles (element type 2) and quadrangles (type 3) of a Gmsh ASCII .msh file, format
+// 2.2 or 4.1, with every node in file order; points, lines and volume elements are skipped.
+// Throws FileError naming the file, line and element.
+SurfaceData ReadGmshSurface(const std::string& path);
+
+} // namespace cli
+} // namespace tetmesher

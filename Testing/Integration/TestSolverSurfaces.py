@@ -1,0 +1,290 @@
+"""`tetmesher mesh` on TetGen's and Gmsh's surface files (run with /usr/bin/python3).
+
+Usage: TestSolverSurfaces.py TETMESHER_EXE CORPUS_DIR
+
+Each case's .off is written as TetGen .smesh (points inline, numbered from 0, with markers
+and comments), .smesh numbered from 1 with its points in NAME.node and a region list, .poly,
+.face with NAME.node, and Gmsh .msh 2.2 and 4.1 (node tags neither contiguous nor from 1,
+element tags out of order, points and lines among the elements; 4.1 with parametric
+coordinates). Meshing each must give the mesh of the .off byte for byte (written as .msh,
+which holds no timing), on the lean path and with --with-vtk. Files that TetGen and Gmsh
+write themselves mesh with exactly their triangles as the boundary. Defective files fail
+with a message naming the file and the defect, the same on both paths.
+"""
+import os
+import random
+import shutil
+import subprocess
+import sys
+import tempfile
+
+exe, corpus = sys.argv[1], sys.argv[2]
+failures = []
+CASES = ["sphere.off", "cubes.off", "hole.off", "anchor.off"]
+
+
+def check(condition, message):
+    if not condition:
+        failures.append(message)
+    return condition
+
+
+def run(args):
+    result = subprocess.run([exe, *args], capture_output=True, text=True, timeout=600)
+    return result.returncode, result.stdout + result.stderr
+
+
+def read_off(path):
+    tokens = []
+    with open(path) as f:
+        for line in f:
+            line = line.split("#")[0].split()
+            if line:
+                tokens.append(line)
+    header = tokens[0]
+    counts = header[1:] if len(header) > 1 else tokens[1]
+    start = 1 if len(header) > 1 else 2
+    n, m = int(counts[0]), int(counts[1])
+    points = [tuple(tokens[start + i][:3]) for i in range(n)]  # text, as written
+    polygons = [[int(x) for x in tokens[start + n + f][1:1 + int(tokens[start + n + f][0])]]
+                for f in range(m)]
+    return points, polygons
+
+
+def write(path, lines):
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def write_tetgen(stem, points, polygons):
+    """The TetGen files of the surface; returns {file to mesh: expected note or None}."""
+    files = {}
+    body = ["# facets", "%d 1" % len(polygons)]
+    body += ["%d %s %d" % (len(p), " ".join(str(v) for v in p), 7) for p in polygons]
+    point_list = ["%d 3 0 1" % len(points)]
+    point_list += ["%d %s 0  # point" % (i, " ".join(x)) for i, x in enumerate(points)]
+    write(stem + "-inline.smesh", ["# a surface"] + point_list + body + ["0", "0"])
+    files[stem + "-inline.smesh"] = None
+    # Numbered from 1, points in NAME.node, a region list, no marker column.
+    write(stem + "-one.node", ["%d 3 0 0" % len(points)] +
+          ["%d %s" % (i + 1, " ".join(x)) for i, x in enumerate(points)])
+    write(stem + "-one.smesh", ["0 3 0 0", "%d 0" % len(polygons)] +
+          ["%d %s" % (len(p), " ".join(str(v + 1) for v in p)) for p in polygons] +
+          ["0", "1", "1 0.5 0.5 0.5 10 0.01"])
+    files[stem + "-one.smesh"] = "the region list (1 region(s)) is not used"
+    # .poly: one polygon per facet, a hole count and a marker on the facet line.
+    poly = ["%d 3 0 0" % len(points)] + ["%d %s" % (i, " ".join(x)) for i, x in enumerate(points)]
+    poly += ["%d 1" % len(polygons)]
+    for p in polygons:
+        poly += ["1 0 3", "%d %s" % (len(p), " ".join(str(v) for v in p))]
+    write(stem + ".poly", poly + ["0"])
+    files[stem + ".poly"] = None
+    if all(len(p) == 3 for p in polygons):
+        write(stem + "-face.node", ["%d 3 0 0" % len(points)] +
+              ["%d %s" % (i, " ".join(x)) for i, x in enumerate(points)])
+        write(stem + "-face.face", ["%d 1" % len(polygons)] +
+              ["%d %s -1" % (f, " ".join(str(v) for v in p)) for f, p in enumerate(polygons)])
+        files[stem + "-face.face"] = None
+    return files
+
+
+def write_gmsh(stem, points, polygons):
+    """Gmsh 2.2 and 4.1 files of the surface (polygons of 3 or 4 corners only)."""
+    tag = [3 * i + 5 for i in range(len(points))]  # neither contiguous nor from 1
+    element_tags = list(range(100, 100 + len(polygons)))
+    random.Random(7).shuffle(element_tags)
+    types = [2 if len(p) == 3 else 3 for p in polygons]
+    msh22 = ["$MeshFormat", "2.2 0 8", "$EndMeshFormat",
+             "$PhysicalNames", "1", '2 1 "wall"', "$EndPhysicalNames",
+             "$Nodes", str(len(points))]
+    msh22 += ["%d %s" % (tag[i], " ".join(x)) for i, x in enumerate(points)]
+    msh22 += ["$EndNodes", "$Elements", str(len(polygons) + 2),
+              "1 15 2 0 1 %d" % tag[0], "2 1 2 0 1 %d %d" % (tag[0], tag[1])]
+    msh22 += ["%d %d 2 1 1 %s" % (element_tags[f], types[f], " ".join(str(tag[v]) for v in p))
+              for f, p in enumerate(polygons)]
+    msh22 += ["$EndElements"]
+    write(stem + "-22.msh", msh22)
+    msh41 = ["$MeshFormat", "4.1 0 8", "$EndMeshFormat",
+             "$Entities", "0 0 1 0", "1 0 0 0 1 1 1 0 0", "$EndEntities",
+             "$Nodes", "2 %d %d %d" % (len(points), min(tag), max(tag))]
+    half = len(points) // 2
+    for block, (lo, hi) in enumerate([(0, half), (half, len(points))]):
+        msh41 += ["2 1 1 %d" % (hi - lo)] + [str(tag[i]) for i in range(lo, hi)]
+        msh41 += ["%s 0.25 0.75" % " ".join(points[i]) for i in range(lo, hi)]
+    msh41 += ["$EndNodes", "$Elements"]
+    blocks = []
+    for kind in (2, 3):
+        rows = ["%d %s" % (element_tags[f], " ".join(str(tag[v]) for v in p))
+                for f, p in enumerate(polygons) if types[f] == kind]
+        if rows:
+            blocks.append(["2 1 %d %d" % (kind, len(rows))] + rows)
+    if len(blocks) > 1:  # the element order must stay the polygons' order
+        return {stem + "-22.msh": None}
+    msh41 += ["%d %d 1 999" % (len(blocks) + 1, len(polygons) + 1), "0 1 15 1", "1 %d" % tag[0]]
+    for b in blocks:
+        msh41 += b
+    msh41 += ["$EndElements"]
+    write(stem + "-41.msh", msh41)
+    return {stem + "-22.msh": None, stem + "-41.msh": None}
+
+
+def mesh_bytes(path, out, extra):
+    code, text = run(["mesh", path, "-o", out, "-q", *extra])
+    if not check(code == 0, "%s %s: exit %d: %s" % (path, extra, code, text)):
+        return None, text
+    with open(out, "rb") as f:
+        return f.read(), text
+
+
+def msh_mesh(path):
+    """(points, boundary triangles as sorted triples) of a .msh written by tetmesher."""
+    with open(path) as f:
+        lines = f.read().split("\n")
+    i = lines.index("$Nodes")
+    n = int(lines[i + 1])
+    points = [tuple(lines[i + 2 + k].split()[1:4]) for k in range(n)]
+    j = lines.index("$Elements")
+    triangles = set()
+    for line in lines[j + 2:j + 2 + int(lines[j + 1])]:
+        row = line.split()
+        if row[1] == "2":
+            triangles.add(tuple(sorted(int(v) - 1 for v in row[5:8])))
+    return points, triangles
+
+
+work = tempfile.mkdtemp(prefix="tetmesher-solver-surfaces-")
+try:
+    # 1. Our own writing of each case in every format: the .off's mesh, byte for byte.
+    for case in CASES:
+        source = os.path.join(corpus, case)
+        points, polygons = read_off(source)
+        stem = os.path.join(work, os.path.splitext(case)[0])
+        files = write_tetgen(stem, points, polygons)
+        if all(len(p) in (3, 4) for p in polygons):
+            files.update(write_gmsh(stem, points, polygons))
+        for extra in (["--boundary-only"], []) if case == "sphere.off" else (["--boundary-only"],):
+            reference, _ = mesh_bytes(source, stem + "-ref.msh", extra)
+            for path, note in sorted(files.items()):
+                for path_flag in ([], ["--with-vtk"]):
+                    got, text = mesh_bytes(path, stem + "-got.msh", extra + path_flag)
+                    label = "%s %s" % (os.path.basename(path), " ".join(extra + path_flag))
+                    check(got is not None and got == reference,
+                          "%s: not the mesh of %s" % (label, case))
+                    if note:
+                        check(note in text, "%s: no note '%s' in: %s" % (label, note, text))
+        check(len(files) >= 4, "%s: only %d formats written" % (case, len(files)))
+
+    # 2. Files written by TetGen and Gmsh themselves.
+    tetgen, gmsh = shutil.which("tetgen"), shutil.which("gmsh")
+    if check(tetgen is not None, "tetgen is not installed (scripts/setup.sh installs it)"):
+        for case in ("sphere.off", "anchor.off"):
+            local = os.path.join(work, "tg-" + case)
+            shutil.copy(os.path.join(corpus, case), local)
+            subprocess.run([tetgen, "-pYQ", local], check=True, capture_output=True, timeout=300)
+            stem = local[:-4] + ".1"
+            code, text = run(["mesh", stem + ".face", "-o", stem + "-out.msh", "-q",
+                              "--boundary-only"])
+            if check(code == 0, "TetGen's %s.face: exit %d: %s" % (case, code, text)):
+                with open(stem + ".face") as f:
+                    rows = [r.split("#")[0].split() for r in f]
+                rows = [r for r in rows if r]
+                wanted = {tuple(sorted(int(v) for v in r[1:4])) for r in rows[1:]}
+                with open(stem + ".node") as f:
+                    first = [r.split() for r in f if r.split() and not r.startswith("#")][1][0]
+                wanted = {tuple(v - int(first) for v in t) for t in wanted}
+                _, boundary = msh_mesh(stem + "-out.msh")
+                check(boundary == wanted, "TetGen's %s.face: boundary %d triangles, the file %d"
+                      % (case, len(boundary), len(wanted)))
+    if check(gmsh is not None, "gmsh is not installed (scripts/setup.sh installs it)"):
+        geo = os.path.join(work, "box.geo")
+        write(geo, ["lc = 0.3;", "Point(1) = {0, 0, 0, lc};",
+                    "l[] = Extrude {1, 0, 0} { Point{1}; };",
+                    "s[] = Extrude {0, 1.5, 0} { Line{l[1]}; };",
+                    "v[] = Extrude {0, 0, 0.7} { Surface{s[1]}; };"])
+        for fmt, extra in (("msh22", []), ("msh41", ["-setnumber", "Mesh.SaveParametric", "1"])):
+            out = os.path.join(work, "box-%s.msh" % fmt)
+            subprocess.run([gmsh, geo, "-2", "-format", fmt, *extra, "-o", out],
+                           check=True, capture_output=True, timeout=300)
+            code, text = run(["mesh", out, "-o", out + "-out.msh", "-q", "--boundary-only"])
+            if check(code == 0, "Gmsh's %s: exit %d: %s" % (fmt, code, text)):
+                # Gmsh's triangles, by node position in the file (the reader's point ids).
+                with open(out) as f:
+                    lines = [ln.strip() for ln in f]
+                nodes_at = lines.index("$Nodes")
+                order, tri = [], []
+                if fmt == "msh22":
+                    n = int(lines[nodes_at + 1])
+                    order = [int(lines[nodes_at + 2 + k].split()[0]) for k in range(n)]
+                    e = lines.index("$Elements")
+                    for row in lines[e + 2:e + 2 + int(lines[e + 1])]:
+                        r = row.split()
+                        if r[1] == "2":
+                            tri.append([int(v) for v in r[3 + int(r[2]):]])
+                else:
+                    k = nodes_at + 2
+                    while lines[k] != "$EndNodes":
+                        count = int(lines[k].split()[3])
+                        order += [int(lines[k + 1 + i]) for i in range(count)]
+                        k += 1 + 2 * count
+                    k = lines.index("$Elements") + 2
+                    while lines[k] != "$EndElements":
+                        _, _, kind, count = (int(x) for x in lines[k].split())
+                        if kind == 2:
+                            tri += [[int(x) for x in lines[k + 1 + i].split()[1:]]
+                                    for i in range(count)]
+                        k += 1 + count
+                index = {t: i for i, t in enumerate(order)}
+                wanted = {tuple(sorted(index[v] for v in t)) for t in tri}
+                _, boundary = msh_mesh(out + "-out.msh")
+                check(len(wanted) > 50 and boundary == wanted,
+                      "Gmsh's %s: boundary %d triangles, the file %d"
+                      % (fmt, len(boundary), len(wanted)))
+
+    # 3. Defects: exit 1, the file and the defect named, the same on both paths.
+    tet = ["4 3 0 0", "0 0 0 0", "1 1 0 0", "2 0 1 0", "3 0 0 1"]
+    faces = ["3 0 2 1", "3 0 1 3", "3 0 3 2", "3 1 2 3"]
+    defects = {
+        "range.smesh": (tet + ["4 0"] + faces[:3] + ["3 1 2 9"], "facet 3: corner 9 is not a point"),
+        "holes.smesh": (tet + ["4 0"] + faces + ["1", "1 0.1 0.1 0.1"], "1 hole point(s)"),
+        "dim.smesh": (["4 2 0 0"], "dimension 2"),
+        "first.smesh": (["4 3 0 0", "5 0 0 0"], "the first point is numbered 5"),
+        "gap.smesh": (["4 3 0 0", "0 0 0 0", "1 1 0 0", "3 0 1 0"], "point number 3 where 2"),
+        "corners.smesh": (tet + ["4 0"] + faces[:2] + ["2 0 1", faces[3]], "facet 2: expected"),
+        "segment.poly": (tet + ["4 0", "2", "3 0 2 1", "2 0 1"] +
+                         [r for x in faces[1:] for r in ("1", x)],
+                         "facet 0: polygon 2 has 2 corner(s)"),
+        "facethole.poly": (tet + ["4 0", "1 1", faces[0], "1 0.2 0.2 0"] +
+                           [r for x in faces[1:] for r in ("1", x)], "facet 0 has 1 hole(s)"),
+        "missing.face": (["4 0"] + ["%d %s" % (i, f[2:]) for i, f in enumerate(faces)],
+                         "missing.node: no such file"),
+        "binary.msh": (["$MeshFormat", "4.1 1 8", "$EndMeshFormat"], "binary .msh files"),
+        "version.msh": (["$MeshFormat", "3.0 0 8", "$EndMeshFormat"], "unsupported .msh version"),
+        "curved.msh": (["$MeshFormat", "2.2 0 8", "$EndMeshFormat", "$Nodes", "1",
+                        "1 0 0 0", "$EndNodes", "$Elements", "1", "7 9 0 1 1 1 1 1 1",
+                        "$EndElements"], "element 7 is a curved"),
+        "undefined.msh": (["$MeshFormat", "2.2 0 8", "$EndMeshFormat", "$Nodes", "1",
+                           "1 0 0 0", "$EndNodes", "$Elements", "1", "8 2 0 1 1 4",
+                           "$EndElements"], "element 8 uses undefined node 4"),
+        "notriangles.msh": (["$MeshFormat", "2.2 0 8", "$EndMeshFormat", "$Nodes", "1",
+                             "1 0 0 0", "$EndNodes", "$Elements", "1", "1 15 0 1",
+                             "$EndElements"], "no triangles or quadrangles"),
+        "twice.msh": (["$MeshFormat", "2.2 0 8", "$EndMeshFormat", "$Nodes", "2",
+                       "1 0 0 0", "1 1 0 0", "$EndNodes"], "node 1 is defined twice"),
+    }
+    for name, (lines, message) in sorted(defects.items()):
+        path = os.path.join(work, name)
+        write(path, lines)
+        outputs = []
+        for path_flag in ([], ["--with-vtk"]):
+            code, text = run(["mesh", path, "-o", os.path.join(work, "x.vtu"), "-q", *path_flag])
+            check(code == 1 and message in text and name.split(".")[0] in text,
+                  "%s %s: exit %d, expected '%s' in: %s" % (name, path_flag, code, message, text))
+            outputs.append(text)
+        check(outputs[0] == outputs[1], "%s: the two paths say %r and %r" % (name, *outputs))
+finally:
+    shutil.rmtree(work, ignore_errors=True)
+
+for f in failures:
+    print("FAIL:", f)
+print("%d failure(s)" % len(failures))
+sys.exit(1 if failures else 0)
