@@ -1,5 +1,6 @@
 #include "MeshFiles.h"
 
+#include "GmshFile.h"
 #include "MeshExport.h"
 #include "MeshReport.h"
 #include "Report.h"
@@ -148,163 +149,22 @@ vtkSmartPointer<vtkUnstructuredGrid> ReadTetGen(const std::string& path)
 // other elements (triangles, lines, points) are skipped.
 vtkSmartPointer<vtkUnstructuredGrid> ReadGmsh(const std::string& path)
 {
-  RequireReadableFile(path);
-  TokenFile file(path);
-  std::istringstream line;
-  std::string token;
-  double version = 0;
-  int fileType = 0;
-  std::vector<double> coords;
-  std::vector<long> nodeTags;
-  std::vector<long> tets;
-  while (file.NextLine(line))
-  {
-    line >> token;
-    if (token == "$MeshFormat")
-    {
-      if (!file.NextLine(line) || !(line >> version >> fileType))
-      {
-        file.Fail("expected 'version fileType dataSize' after $MeshFormat");
-      }
-      if (fileType != 0)
-      {
-        file.Fail("binary .msh files are not supported; save as ASCII (Gmsh: -format msh2 or "
-                  "msh41 with Mesh.Binary=0)");
-      }
-      if (version < 2 || version >= 5)
-      {
-        file.Fail("unsupported .msh version " + std::to_string(version));
-      }
-    }
-    else if (token == "$Nodes")
-    {
-      if (version == 0)
-      {
-        file.Fail("$Nodes before $MeshFormat");
-      }
-      if (version < 3)
-      {
-        long n;
-        if (!file.NextLine(line) || !(line >> n))
-          file.Fail("expected the node count");
-        for (long i = 0; i < n; ++i)
-        {
-          long tag;
-          double x, y, z;
-          if (!file.NextLine(line) || !(line >> tag >> x >> y >> z))
-            file.Fail("expected a node 'tag x y z'");
-          nodeTags.push_back(tag);
-          coords.insert(coords.end(), { x, y, z });
-        }
-      }
-      else
-      {
-        long blocks, n, minTag, maxTag;
-        if (!file.NextLine(line) || !(line >> blocks >> n >> minTag >> maxTag))
-          file.Fail("expected 'numEntityBlocks numNodes minTag maxTag'");
-        for (long b = 0; b < blocks; ++b)
-        {
-          long dim, entity, parametric, inBlock;
-          if (!file.NextLine(line) || !(line >> dim >> entity >> parametric >> inBlock))
-            file.Fail("expected a node block header");
-          std::vector<long> tags(static_cast<std::size_t>(inBlock));
-          for (auto& tag : tags)
-          {
-            if (!file.NextLine(line) || !(line >> tag))
-              file.Fail("expected a node tag");
-          }
-          for (long i = 0; i < inBlock; ++i)
-          {
-            double x, y, z;
-            if (!file.NextLine(line) || !(line >> x >> y >> z))
-              file.Fail("expected node coordinates 'x y z'");
-            nodeTags.push_back(tags[static_cast<std::size_t>(i)]);
-            coords.insert(coords.end(), { x, y, z });
-          }
-        }
-      }
-    }
-    else if (token == "$Elements")
-    {
-      if (version < 3)
-      {
-        long n;
-        if (!file.NextLine(line) || !(line >> n))
-          file.Fail("expected the element count");
-        for (long i = 0; i < n; ++i)
-        {
-          long tag, type, tagCount;
-          if (!file.NextLine(line) || !(line >> tag >> type >> tagCount))
-            file.Fail("expected an element 'tag type numTags ...'");
-          long skip;
-          for (long k = 0; k < tagCount; ++k)
-            line >> skip;
-          if (type == 4)
-          {
-            long v[4];
-            if (!(line >> v[0] >> v[1] >> v[2] >> v[3]))
-              file.Fail("expected the 4 nodes of a tetrahedron");
-            tets.insert(tets.end(), v, v + 4);
-          }
-        }
-      }
-      else
-      {
-        long blocks, n, minTag, maxTag;
-        if (!file.NextLine(line) || !(line >> blocks >> n >> minTag >> maxTag))
-          file.Fail("expected 'numEntityBlocks numElements minTag maxTag'");
-        for (long b = 0; b < blocks; ++b)
-        {
-          long dim, entity, type, inBlock;
-          if (!file.NextLine(line) || !(line >> dim >> entity >> type >> inBlock))
-            file.Fail("expected an element block header");
-          for (long i = 0; i < inBlock; ++i)
-          {
-            if (!file.NextLine(line))
-              file.Fail("expected an element");
-            if (type == 4)
-            {
-              long tag, v[4];
-              if (!(line >> tag >> v[0] >> v[1] >> v[2] >> v[3]))
-                file.Fail("expected 'tag n0 n1 n2 n3' of a tetrahedron");
-              tets.insert(tets.end(), v, v + 4);
-            }
-          }
-        }
-      }
-    }
-  }
-  if (version == 0)
-  {
-    Fail(path, "not a Gmsh mesh (no $MeshFormat section)");
-  }
-  // Node tags are arbitrary positive integers: map them to point ids.
-  long maxTag = 0;
-  for (long tag : nodeTags)
-    maxTag = std::max(maxTag, tag);
-  std::vector<vtkIdType> idOfTag(static_cast<std::size_t>(maxTag + 1), -1);
+  const GmshMesh mesh =
+    ReadGmshMesh(path, [](int type, std::string&) { return type == 4 ? 4 : 0; });
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(static_cast<vtkIdType>(nodeTags.size()));
-  for (std::size_t i = 0; i < nodeTags.size(); ++i)
-  {
-    idOfTag[static_cast<std::size_t>(nodeTags[i])] = static_cast<vtkIdType>(i);
-    points->SetPoint(static_cast<vtkIdType>(i), &coords[3 * i]);
-  }
+  const auto pointCount = static_cast<vtkIdType>(mesh.points.size() / 3);
+  points->SetNumberOfPoints(pointCount);
+  for (vtkIdType i = 0; i < pointCount; ++i)
+    points->SetPoint(i, &mesh.points[static_cast<std::size_t>(3 * i)]);
   auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
   grid->SetPoints(points);
-  grid->Allocate(static_cast<vtkIdType>(tets.size() / 4));
-  for (std::size_t t = 0; t < tets.size(); t += 4)
+  grid->Allocate(static_cast<vtkIdType>(mesh.ElementCount()));
+  for (std::size_t t = 0; t < mesh.ElementCount(); ++t)
   {
     vtkIdType v[4];
     for (int k = 0; k < 4; ++k)
-    {
-      long tag = tets[t + static_cast<std::size_t>(k)];
-      if (tag <= 0 || tag > maxTag || idOfTag[static_cast<std::size_t>(tag)] < 0)
-        Fail(path,
-          "tetrahedron " + std::to_string(t / 4) + " uses undefined node " + std::to_string(tag));
-      v[k] = idOfTag[static_cast<std::size_t>(tag)];
-    }
+      v[k] = static_cast<vtkIdType>(mesh.nodes[4 * t + static_cast<std::size_t>(k)]);
     grid->InsertNextCell(VTK_TETRA, 4, v);
   }
   return grid;

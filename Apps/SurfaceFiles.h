@@ -36,6 +36,13 @@ std::string LowerExtension(const std::string& path);
 // The whole file as bytes; false when it cannot be read.
 bool ReadWholeFile(const std::string& path, std::string& bytes);
 
+// What to reserve for `count` items read from a file's header: the count, up to a bound, so
+// that the count of a corrupt header gives its error rather than bad_alloc.
+inline std::size_t ReserveBound(long count)
+{
+  return static_cast<std::size_t>(count < 0 ? 0 : count < (1L << 24) ? count : (1L << 24));
+}
+
 // A line-oriented tokenizer that skips '#' comments and knows the line number for errors.
 class TokenFile
 {
