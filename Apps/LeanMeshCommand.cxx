@@ -149,6 +149,7 @@ int RunMesh(int argc, char* argv[])
       job.triangleIdsAreNotCellIds =
         surface.vertexCells + surface.lineCells > 0 || triangulatedPolygons > 0;
       job.triangulatedPolygons = static_cast<double>(triangulatedPolygons);
+      job.holePoints = surface.holePoints;
       job.sizeArrayName = options.size > 0 ? kConstantSizeArray : options.sizeArray;
       job.readSizeArray = [&](std::vector<double>& sizes)
       {

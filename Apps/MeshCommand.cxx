@@ -14,6 +14,7 @@
 #include "vtkFieldData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkTetMesher.h"
 #include "vtkUnstructuredGrid.h"
@@ -22,6 +23,7 @@
 #include <cstdio>
 #include <string>
 #include <unistd.h>
+#include <vector>
 
 namespace tetmesher
 {
@@ -49,7 +51,8 @@ int RunMeshWithVtk(const MeshOptions& o)
     {
       StageClock clock(o.processStart);
       std::string readingNotes; // what the file holds but the mesh does not use
-      vtkSmartPointer<vtkPolyData> surface = ReadSurface(o.input, &readingNotes);
+      std::vector<double> holePoints;
+      vtkSmartPointer<vtkPolyData> surface = ReadSurface(o.input, &readingNotes, &holePoints);
       clock.Lap("reading");
       vtkNew<vtkTetMesher> mesher;
       std::string sizeArray = o.sizeArray;
@@ -85,6 +88,13 @@ int RunMeshWithVtk(const MeshOptions& o)
         mesher->SetControllingSpaceArrayName(o.backgroundArray.c_str());
       }
       mesher->SetEnclosedShellsAreHoles(o.holes);
+      if (!holePoints.empty())
+      {
+        vtkNew<vtkPoints> holes;
+        for (std::size_t i = 0; i < holePoints.size(); i += 3)
+          holes->InsertNextPoint(&holePoints[i]);
+        mesher->SetHolePoints(holes);
+      }
       mesher->SetMaximumSteinerPoints(o.maxSteiner);
       mesher->SetCheckInput(o.check);
       vtkNew<ProgressBar> bar;

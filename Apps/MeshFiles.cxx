@@ -229,7 +229,9 @@ vtkSmartPointer<vtkDataSet> ReadVolumeMesh(const std::string& path)
   Fail(path, "unknown file type '" + ext + "' (use .vtu, .vtk, .node/.ele or .msh)");
 }
 
-vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path, std::string* notes)
+vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path,
+  std::string* notes,
+  std::vector<double>* holePoints)
 {
   const std::string ext = LowerExtension(path);
   RequireReadableFile(path);
@@ -241,7 +243,10 @@ vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path, std::string* n
   if (IsTetGenSurfaceExtension(ext))
   {
     std::string unused;
-    return PolyDataOf(ReadTetGenSurface(path, notes ? *notes : unused));
+    const SurfaceData data = ReadTetGenSurface(path, notes ? *notes : unused);
+    if (holePoints)
+      *holePoints = data.holePoints;
+    return PolyDataOf(data);
   }
   if (ext == ".msh")
   {

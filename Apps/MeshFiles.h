@@ -9,6 +9,7 @@
 #include "vtkSmartPointer.h"
 
 #include <string>
+#include <vector>
 
 class vtkDataSet;
 class vtkPolyData;
@@ -23,8 +24,11 @@ namespace cli
 vtkSmartPointer<vtkDataSet> ReadVolumeMesh(const std::string& path);
 
 // Reads a triangulated surface. Throws FileError. `notes`, when given, receives what the file
-// holds but the mesh does not use (SolverSurfaceFiles.h), one line each.
-vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path, std::string* notes = nullptr);
+// holds but the mesh does not use (SolverSurfaceFiles.h), one line each; `holePoints` TetGen's
+// hole list (3 doubles per point).
+vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path,
+  std::string* notes = nullptr,
+  std::vector<double>* holePoints = nullptr);
 
 // Writes an unstructured grid (.vtu or legacy .vtk by extension). Throws FileError.
 // .vtu: raw appended binary, zlib-compressed when `compress`; .vtk: legacy binary.

@@ -24,8 +24,9 @@ boundary edges at each surface point, interpolated inside), then the worst eleme
 improved by flips, edge removal and smoothing.
 
 SURFACE: .stl .obj .ply .vtp .vtk .off, TetGen .smesh .poly .face (points from NAME.node
-     when the file lists none), Gmsh .msh (2.2 or 4.1 ASCII: its triangles and
-     quadrangles); input cell ids count the polygons read, in file order
+     when the file lists none; the regions of its hole points are removed), Gmsh .msh
+     (2.2 or 4.1 ASCII: its triangles and quadrangles); input cell ids count the
+     polygons read, in file order
 OUT: .vtu or .vtk (VTK), .msh (Gmsh 2.2 ASCII: tets tagged RegionId + 1, boundary
      triangles input cell id + 1), .node or .ele (TetGen: NAME.node, NAME.ele with the
      RegionId attribute, NAME.face with the input cell id + 1 as marker)

@@ -97,19 +97,28 @@ void ReadCorners(TokenFile& file,
   out.polygonOffsets.push_back(static_cast<std::int64_t>(out.polygonPoints.size()));
 }
 
-// Parts 3 and 4 of .smesh and .poly: the hole list (refused unless empty) and the region
+// Parts 3 and 4 of .smesh and .poly: the hole list (into surface.holePoints) and the region
 // list (noted). Both may be missing at the end of the file.
-void ReadHolesAndRegions(TokenFile& file, std::istringstream& line, std::string& notes)
+void ReadHolesAndRegions(TokenFile& file,
+  std::istringstream& line,
+  SurfaceData& surface,
+  std::string& notes)
 {
   long holes = 0;
   if (!file.NextLine(line))
     return;
   if (!(line >> holes) || holes < 0)
     file.Fail("expected the hole list's count");
-  if (holes > 0)
-    file.Fail(std::to_string(holes) +
-      " hole point(s): tetmesher does not remove regions by hole points (every region the "
-      "surface encloses is meshed; 'tetmesher mesh --holes' makes every enclosed shell a hole)");
+  surface.holePoints.reserve(3 * ReserveBound(holes));
+  for (long h = 0; h < holes; ++h)
+  {
+    long number;
+    double x, y, z;
+    if (!file.NextLine(line) || !(line >> number >> x >> y >> z))
+      file.Fail("expected hole point " + std::to_string(h) + " of " + std::to_string(holes) +
+        " as 'number x y z'");
+    surface.holePoints.insert(surface.holePoints.end(), { x, y, z });
+  }
   long regions = 0;
   if (!file.NextLine(line))
     return;
@@ -192,7 +201,7 @@ SurfaceData ReadTetGenSurface(const std::string& path, std::string& notes)
     }
   }
   if (ext != ".face")
-    ReadHolesAndRegions(file, line, notes);
+    ReadHolesAndRegions(file, line, surface, notes);
   return surface;
 }
 

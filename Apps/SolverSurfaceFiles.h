@@ -5,9 +5,10 @@
 //
 // Point ids are the files' points in their order (every point, used by a facet or not, as
 // TetGen meshes them); input cell ids count the polygons read, in file order (TetGen: the
-// facets, or the polygons of .poly facets; Gmsh: its triangles and quadrangles). What the
-// mesh cannot honour is refused by name rather than dropped: TetGen's hole points, facets
-// with holes or inner segments, Gmsh's curved (second-order) elements, binary files.
+// facets, or the polygons of .poly facets; Gmsh: its triangles and quadrangles). TetGen's
+// hole points go to SurfaceData::holePoints (the mesher removes their regions). What the
+// mesh cannot honour is refused by name rather than dropped: facets with holes or inner
+// segments, Gmsh's curved (second-order) elements, binary files.
 #pragma once
 
 #include "SurfaceFiles.h"

@@ -269,12 +269,24 @@ vtkTetMesher::~vtkTetMesher()
 {
   this->SetSizeArrayName(nullptr);
   this->SetControllingSpaceArrayName(nullptr);
+  this->SetHolePoints(nullptr);
+}
+
+vtkCxxSetObjectMacro(vtkTetMesher, HolePoints, vtkPoints);
+
+vtkMTimeType vtkTetMesher::GetMTime()
+{
+  const vtkMTimeType own = this->Superclass::GetMTime();
+  return this->HolePoints ? std::max(own, this->HolePoints->GetMTime()) : own;
 }
 
 void vtkTetMesher::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "EnclosedShellsAreHoles: " << this->EnclosedShellsAreHoles << "\n";
+  os << indent
+     << "HolePoints: " << (this->HolePoints ? this->HolePoints->GetNumberOfPoints() : vtkIdType(0))
+     << "\n";
   os << indent << "MaximumSteinerPoints: " << this->MaximumSteinerPoints << "\n";
   os << indent << "RemoveSteinerPoints: " << this->RemoveSteinerPoints << "\n";
   os << indent << "CheckInput: " << this->CheckInput << "\n";
@@ -449,6 +461,13 @@ int vtkTetMesher::RequestData(vtkInformation*,
   job.cellOfTriangle = cellOfTriangle.data();
   job.triangleIdsAreNotCellIds = firstPolyId > 0 || triangulatedPolygons > 0;
   job.triangulatedPolygons = static_cast<double>(triangulatedPolygons);
+  if (this->HolePoints)
+    for (vtkIdType i = 0; i < this->HolePoints->GetNumberOfPoints(); ++i)
+    {
+      double x[3];
+      this->HolePoints->GetPoint(i, x);
+      job.holePoints.insert(job.holePoints.end(), x, x + 3);
+    }
   if (this->SizeArrayName && *this->SizeArrayName)
   {
     job.sizeArrayName = this->SizeArrayName;

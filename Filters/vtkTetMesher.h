@@ -43,6 +43,7 @@
 #include <string> // for LastError
 
 class vtkAlgorithmOutput;
+class vtkPoints;
 class vtkPolyData;
 class vtkTable;
 
@@ -62,6 +63,20 @@ public:
   vtkGetMacro(EnclosedShellsAreHoles, bool);
   vtkBooleanMacro(EnclosedShellsAreHoles, bool);
   ///@}
+
+  ///@{
+  /**
+   * Points inside regions to remove, as TetGen's hole list: the region containing each point
+   * (a shell's inside, a cavity) is dropped like the exterior. A point outside the surface or
+   * on it (decided exactly) fails the run naming the point, and so does a removed region
+   * between an input triangle and the exterior (the triangle would bound nothing). nullptr,
+   * the default: none. The filter's modification time includes the points'.
+   */
+  virtual void SetHolePoints(vtkPoints* points);
+  vtkGetObjectMacro(HolePoints, vtkPoints);
+  ///@}
+
+  vtkMTimeType GetMTime() override;
 
   ///@{
   /**
@@ -307,6 +322,8 @@ protected:
   std::string LastError;
   std::string LastWarnings;
   std::string StageTimings;
+
+  vtkPoints* HolePoints = nullptr;
 
 private:
   vtkTetMesher(const vtkTetMesher&) = delete;

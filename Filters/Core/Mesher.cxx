@@ -125,12 +125,18 @@ MesherResult meshSurface(const double* points,
   RegionOptions regionOptions;
   regionOptions.firstBoxVertex = delaunay.firstBoxVertex;
   regionOptions.enclosedShellsAreHoles = options.enclosedShellsAreHoles;
+  regionOptions.holePoints = options.holePoints;
   if (options.removeSteinerPoints && !recovery.steinerVertices.empty())
   {
     // Steiner points outside every region go with the exterior tets (stage 3), and removing
     // them would change no kept tet (no move crosses a constrained face): only the others
     // are removed. Classifying is one flood fill, and the moves keep every region.
     const RegionResult early = classifyRegions(mesh, regionOptions);
+    if (!early.error.empty())
+    {
+      result.error = early.error;
+      return result;
+    }
     std::vector<char> inside(static_cast<std::size_t>(mesh.vertexCount()), 0);
     for (TetId t = 0; t < mesh.tetCapacity(); ++t)
     {
@@ -151,6 +157,11 @@ MesherResult meshSurface(const double* points,
   // Stage 3: exterior removal and regions.
   stageStart = std::chrono::steady_clock::now();
   RegionResult regions = classifyRegions(mesh, regionOptions);
+  if (!regions.error.empty())
+  {
+    result.error = regions.error;
+    return result;
+  }
   result.regionCount = regions.regionCount;
   if (options.removeFlatTets)
   {
@@ -217,9 +228,10 @@ MesherResult meshSurface(const double* points,
     if (result.boundaryFaceTet[i] < 0)
     {
       // Only possible if a triangle has exterior (or hole) on both sides: a fin or a wall
-      // inside a hole.
-      result.error = "input triangle " + std::to_string(i) +
-        " bounds no kept tetrahedron (exterior on both sides)";
+      // inside a hole, or a hole point's region between the triangle and the exterior.
+      result.error = "input triangle " + std::to_string(i) + " bounds no kept tetrahedron " +
+        (options.holePoints.empty() ? "(exterior on both sides)"
+                                    : "(exterior or a hole point's region on both sides)");
       result.points.clear();
       result.tets.clear();
       result.regionIds.clear();

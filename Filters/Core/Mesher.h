@@ -23,6 +23,9 @@ struct MesherOptions
   // shell and the inner ball, 2 regions). When set, components at even depth (the inner ball)
   // are holes and dropped. Side-by-side materials (shared faces) all have depth 1.
   bool enclosedShellsAreHoles = false;
+  // TetGen's hole list (3 doubles per point): the components containing these points are
+  // holes, dropped like the exterior. A point outside the surface or on it is the run's error.
+  std::vector<double> holePoints;
   // Budget of recovery Steiner points; -1: 100 + 4 per input triangle. An item still missing
   // after 64 Steiner points near it also ends the run (error naming it).
   int maxSteinerPoints = -1;

@@ -1,10 +1,56 @@
 #include "Regions.h"
 
+#include "Delaunay.h"
+#include "Predicates.h"
+
 #include <algorithm>
 #include <set>
+#include <sstream>
 
 namespace tetmesher
 {
+
+namespace
+{
+constexpr std::int32_t kOnSurface = -2;
+
+// The component of the tets containing point p (closed tets: p may lie on a face, an edge or
+// a vertex of them), -1 when no tet contains it, kOnSurface when a constrained face does.
+// The tets containing p are connected through their faces that contain p, so a search
+// across those faces finds them all, and every constrained face that contains p.
+std::int32_t componentOfPoint(const TetMesh& mesh,
+  const std::vector<std::int32_t>& component,
+  const double* p)
+{
+  const TetId start = locatePoint(mesh, p, -1);
+  if (start < 0)
+    return -1;
+  std::vector<TetId> found{ start }, stack{ start };
+  while (!stack.empty())
+  {
+    const TetId t = stack.back();
+    stack.pop_back();
+    for (int f = 0; f < 4; ++f)
+    {
+      const VertexId* tv = &mesh.tets[4 * static_cast<std::size_t>(t)];
+      if (predicates::orient3d(mesh.point(tv[kFaceVertices[f][0]]),
+            mesh.point(tv[kFaceVertices[f][1]]),
+            mesh.point(tv[kFaceVertices[f][2]]),
+            p) != 0)
+        continue;
+      if (mesh.isConstrained(t, f))
+        return kOnSurface;
+      const FaceRef n = mesh.neighbor(t, f);
+      if (n != kNoNeighbor && std::find(found.begin(), found.end(), faceTet(n)) == found.end())
+      {
+        found.push_back(faceTet(n));
+        stack.push_back(faceTet(n));
+      }
+    }
+  }
+  return component[start];
+}
+} // namespace
 
 RegionResult classifyRegions(const TetMesh& mesh, const RegionOptions& options)
 {
@@ -84,10 +130,26 @@ RegionResult classifyRegions(const TetMesh& mesh, const RegionOptions& options)
     }
   }
   RegionResult result;
+  std::vector<char> holeComponent(componentCount, 0);
+  for (std::size_t i = 0; 3 * i < options.holePoints.size(); ++i)
+  {
+    const std::int32_t c = componentOfPoint(mesh, component, &options.holePoints[3 * i]);
+    std::ostringstream where;
+    where << "hole point " << i << " (" << options.holePoints[3 * i] << ", "
+          << options.holePoints[3 * i + 1] << ", " << options.holePoints[3 * i + 2] << ")";
+    if (c == kOnSurface)
+      result.error = where.str() + " lies on the input surface";
+    else if (c < 0 || touchesBox[c])
+      result.error = where.str() + " is outside the input surface";
+    if (!result.error.empty())
+      return result;
+    holeComponent[c] = 1;
+  }
   std::vector<std::int32_t> regionOf(componentCount, -1);
   for (std::int32_t c = 0; c < componentCount; ++c)
   {
-    bool hole = options.enclosedShellsAreHoles && depth[c] >= 2 && depth[c] % 2 == 0;
+    bool hole =
+      (options.enclosedShellsAreHoles && depth[c] >= 2 && depth[c] % 2 == 0) || holeComponent[c];
     if (depth[c] != 0 && !hole)
       regionOf[c] = result.regionCount++;
   }

@@ -8,6 +8,7 @@
 #include "TetMesh.h"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace tetmesher
@@ -19,12 +20,16 @@ struct RegionOptions
   // Components at even depth >= 2 (inside a region, e.g. the inner ball of two nested
   // spheres) are holes instead of regions of their own.
   bool enclosedShellsAreHoles = false;
+  // TetGen's hole list: the components containing these points (3 doubles each) are holes.
+  // A point outside the surface, or on it (decided exactly), is an error naming it.
+  std::vector<double> holePoints;
 };
 
 struct RegionResult
 {
   std::vector<std::int32_t> tetRegion; // per tet slot: region id, or -1 (exterior, hole, free)
   int regionCount = 0;
+  std::string error; // a hole point outside the surface or on it; tetRegion is then empty
 };
 
 RegionResult classifyRegions(const TetMesh& mesh, const RegionOptions& options);

@@ -166,6 +166,7 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
   // The surface was checked above (or the user chose not to): not twice.
   options.boundary.validateInput = false;
   options.boundary.enclosedShellsAreHoles = settings.enclosedShellsAreHoles;
+  options.boundary.holePoints = input.holePoints;
   options.boundary.maxSteinerPoints = settings.maximumSteinerPoints;
   options.boundary.removeSteinerPoints = settings.removeSteinerPoints;
   options.refine = settings.refine;

@@ -54,6 +54,8 @@ struct SurfaceMeshInput
   // that its triangle ids are not input cell ids.
   bool triangleIdsAreNotCellIds = false;
   double triangulatedPolygons = 0; // field data TriangulatedPolygonCount
+  // TetGen's hole list, 3 doubles per point: the regions containing them are removed.
+  std::vector<double> holePoints;
   // The point array of sizes (vtkTetMesher's SizeArrayName), asked for only when refining:
   // fills one value per point, false when the surface has no array of that name.
   std::string sizeArrayName;

@@ -117,6 +117,66 @@ TEST(BoundaryMesh, NestedSpheresHole)
   meshAndCheck(s, sign, 1, options);
 }
 
+// TetGen's hole list: the region containing a hole point is removed. Every input triangle
+// must still bound a kept tet: a hole point in a region between a triangle and the exterior
+// is an error naming the triangle.
+TEST(BoundaryMesh, HolePointsRemoveTheirRegion)
+{
+  Surface s = icosphere(2, 1.0);
+  const std::int32_t outer = s.triangleCount();
+  s.append(icosphere(1, 0.5));
+  MesherOptions inBall;
+  inBall.holePoints = { 0.01, 0.02, 0.03 };
+  std::vector<int> shellOnly(s.triangleCount(), -1);
+  std::fill(shellOnly.begin(), shellOnly.begin() + outer, 1);
+  meshAndCheck(s, shellOnly, 1, inBall);
+  // Two hole points in the same region, the same.
+  MesherOptions twice;
+  twice.holePoints = { 0.01, 0.02, 0.03, -0.02, 0.0, 0.0 };
+  meshAndCheck(s, shellOnly, 1, twice);
+  MesherOptions inShell;
+  inShell.holePoints = { 0.75, 0.0, 0.1 };
+  const MesherResult r =
+    meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), inShell);
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.error,
+    "input triangle 0 bounds no kept tetrahedron (exterior or a hole point's region on both "
+    "sides)");
+  // The tubes of a torus around a ball: the ball goes, the tube stays.
+  Surface t = torus(2.0, 0.6, 24, 12);
+  const std::int32_t tube = t.triangleCount();
+  t.append(icosphere(2, 0.5, { 2.0, 0.0, 0.0 }));
+  MesherOptions inTube;
+  inTube.holePoints = { 2.01, 0.0, 0.0 };
+  std::vector<int> tubeOnly(t.triangleCount(), -1);
+  std::fill(tubeOnly.begin(), tubeOnly.begin() + tube, 1);
+  meshAndCheck(t, tubeOnly, 1, inTube);
+}
+
+// A hole point on the surface (a vertex, an edge, inside a face: decided exactly) or outside
+// it is an error naming the point.
+TEST(BoundaryMesh, HolePointsOnOrOutsideTheSurfaceAreNamed)
+{
+  const Surface s = box({ 0, 0, 0 }, { 1, 1, 1 }, { 2, 2, 2 }, false);
+  const std::vector<std::pair<std::array<double, 3>, std::string>> cases = {
+    { { 1, 1, 1 }, "hole point 0 (1, 1, 1) lies on the input surface" },
+    { { 0.25, 0, 0 }, "hole point 0 (0.25, 0, 0) lies on the input surface" },
+    { { 0.25, 0.125, 0 }, "hole point 0 (0.25, 0.125, 0) lies on the input surface" },
+    { { 1, 0.5, 0.5 }, "hole point 0 (1, 0.5, 0.5) lies on the input surface" },
+    { { 1.5, 0.5, 0.5 }, "hole point 0 (1.5, 0.5, 0.5) is outside the input surface" },
+    { { 1e3, 0, 0 }, "hole point 0 (1000, 0, 0) is outside the input surface" },
+  };
+  for (const auto& [point, message] : cases)
+  {
+    MesherOptions options;
+    options.holePoints.assign(point.begin(), point.end());
+    const MesherResult r =
+      meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), options);
+    EXPECT_FALSE(r.ok);
+    EXPECT_EQ(r.error, message);
+  }
+}
+
 TEST(BoundaryMesh, ThinSlab)
 {
   Surface s = box({ 0, 0, 0 }, { 1, 1, 0.02 }, { 8, 8, 1 });

@@ -8,7 +8,8 @@ and comments), .smesh numbered from 1 with its points in NAME.node and a region 
 element tags out of order, points and lines among the elements; 4.1 with parametric
 coordinates). Meshing each must give the mesh of the .off byte for byte (written as .msh,
 which holds no timing), on the lean path and with --with-vtk. Files that TetGen and Gmsh
-write themselves mesh with exactly their triangles as the boundary. Defective files fail
+write themselves mesh with exactly their triangles as the boundary. A .smesh of nested spheres
+with a hole point in the inner ball meshes as the .off with --holes. Defective files fail
 with a message naming the file and the defect, the same on both paths.
 """
 import os
@@ -240,12 +241,47 @@ try:
                       "Gmsh's %s: boundary %d triangles, the file %d"
                       % (fmt, len(boundary), len(wanted)))
 
-    # 3. Defects: exit 1, the file and the defect named, the same on both paths.
+    # 3. TetGen's hole list: nested spheres with a hole point in the inner ball mesh as
+    # `--holes` meshes them (the ball removed), byte for byte, on both paths.
+    points, polygons = read_off(os.path.join(corpus, "sphere.off"))
+    outer = [tuple(float(v) for v in p) for p in points]
+    nested_points = [tuple(repr(v) for v in p) for p in outer]
+    nested_points += [tuple(repr(0.5 * v) for v in p) for p in outer]
+    nested = polygons + [[v + len(outer) for v in reversed(p)] for p in polygons]
+    stem = os.path.join(work, "nested")
+    write(stem + ".off", ["OFF", "%d %d 0" % (len(nested_points), len(nested))] +
+          [" ".join(p) for p in nested_points] +
+          ["%d %s" % (len(p), " ".join(str(v) for v in p)) for p in nested])
+    body = ["%d 3 0 0" % len(nested_points)]
+    body += ["%d %s" % (i, " ".join(p)) for i, p in enumerate(nested_points)]
+    body += ["%d 0" % len(nested)] + ["3 %s" % " ".join(str(v) for v in p) for p in nested]
+    write(stem + "-hole.smesh", body + ["1", "0 0.01 0.02 0.03"])
+    for extra in (["--boundary-only"], []):
+        reference, _ = mesh_bytes(stem + ".off", stem + "-ref.msh", extra + ["--holes"])
+        for path_flag in ([], ["--with-vtk"]):
+            got, _ = mesh_bytes(stem + "-hole.smesh", stem + "-got.msh", extra + path_flag)
+            check(got is not None and got == reference,
+                  "nested-hole.smesh %s: not the mesh of --holes" % " ".join(extra + path_flag))
+        unholed, _ = mesh_bytes(stem + ".off", stem + "-two.msh", extra)
+        check(unholed != reference, "nested.off: --holes changes nothing (the test is void)")
+    write(stem + "-shell.smesh", body + ["1", "0 0.375 0.0 0.01"])
+    code, text = run(["mesh", stem + "-shell.smesh", "-o", stem + "-x.vtu", "-q"])
+    check(code == 1 and "bounds no kept tetrahedron (exterior or a hole point's region" in text,
+          "nested-shell.smesh: exit %d: %s" % (code, text))
+
+    # 4. Defects: exit 1, the file and the defect named, the same on both paths.
     tet = ["4 3 0 0", "0 0 0 0", "1 1 0 0", "2 0 1 0", "3 0 0 1"]
     faces = ["3 0 2 1", "3 0 1 3", "3 0 3 2", "3 1 2 3"]
     defects = {
         "range.smesh": (tet + ["4 0"] + faces[:3] + ["3 1 2 9"], "facet 3: corner 9 is not a point"),
-        "holes.smesh": (tet + ["4 0"] + faces + ["1", "1 0.1 0.1 0.1"], "1 hole point(s)"),
+        "holes.smesh": (tet + ["4 0"] + faces + ["1", "1 0.1 0.1 0.1"],
+                        "input triangle 0 bounds no kept tetrahedron (exterior or a hole"),
+        "holeon.smesh": (tet + ["4 0"] + faces + ["1", "1 0.25 0.25 0"],
+                         "hole point 0 (0.25, 0.25, 0) lies on the input surface"),
+        "holeout.smesh": (tet + ["4 0"] + faces + ["1", "1 2 0 0"],
+                          "hole point 0 (2, 0, 0) is outside the input surface"),
+        "holeline.smesh": (tet + ["4 0"] + faces + ["1", "1 0.25 0.25"],
+                           "expected hole point 0 of 1 as 'number x y z'"),
         "dim.smesh": (["4 2 0 0"], "dimension 2"),
         "first.smesh": (["4 3 0 0", "5 0 0 0"], "the first point is numbered 5"),
         "gap.smesh": (["4 3 0 0", "0 0 0 0", "1 1 0 0", "3 0 1 0"], "point number 3 where 2"),

@@ -8,7 +8,7 @@ import sys
 
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkCommand
+from vtkmodules.vtkCommonCore import vtkCommand, vtkPoints
 
 from tetmesher import vtkTetMesher
 
@@ -101,6 +101,15 @@ check("joint.off", 1)
 check("torus.vtp", 1)
 check("nested_spheres.vtp", 2, volume="outer")
 check("nested_spheres.vtp", 1, volume="outer-inner", EnclosedShellsAreHoles=True)
+# TetGen's hole list: a point in the inner ball removes it, as EnclosedShellsAreHoles does.
+hole = vtkPoints()
+hole.InsertNextPoint(0.01, 0.02, 0.03)
+check("nested_spheres.vtp", 1, volume="outer-inner", HolePoints=hole)
+outside = vtkPoints()
+outside.InsertNextPoint(3.0, 0.0, 0.0)
+_, hole_errors = mesh(*read_surface(os.path.join(data, "nested_spheres.vtp")), HolePoints=outside)
+if not any("hole point 0 (3, 0, 0) is outside the input surface" in e for e in hole_errors):
+    failures.append(f"a hole point outside the surface: {hole_errors}")
 # A CAD-like part whose recovery needs Steiner points (35-70): none may end up on a face.
 check("gear.vtp", 1, Refine=False, Optimize=False)
 
