@@ -130,6 +130,12 @@ RegionResult classifyRegions(const TetMesh& mesh, const RegionOptions& options)
     }
   }
   RegionResult result;
+  // Outside the exact range (or not finite) the walk's predicates would be wrong.
+  result.error = predicates::coordinateRangeError(options.holePoints.data(),
+    static_cast<std::int64_t>(options.holePoints.size() / 3),
+    "hole point");
+  if (!result.error.empty())
+    return result;
   std::vector<char> holeComponent(componentCount, 0);
   for (std::size_t i = 0; 3 * i < options.holePoints.size(); ++i)
   {

@@ -165,6 +165,7 @@ TEST(BoundaryMesh, HolePointsOnOrOutsideTheSurfaceAreNamed)
     { { 1, 0.5, 0.5 }, "hole point 0 (1, 0.5, 0.5) lies on the input surface" },
     { { 1.5, 0.5, 0.5 }, "hole point 0 (1.5, 0.5, 0.5) is outside the input surface" },
     { { 1e3, 0, 0 }, "hole point 0 (1000, 0, 0) is outside the input surface" },
+    { { 0.5, std::nan(""), 0.5 }, "hole point 0 has a non-finite coordinate (nan)" },
   };
   for (const auto& [point, message] : cases)
   {
