@@ -2,6 +2,7 @@
 
 #include "SurfaceFiles.h"
 
+#include <sstream>
 #include <unordered_map>
 
 namespace tetmesher
@@ -31,7 +32,7 @@ GmshMesh ReadGmshMesh(const std::string& path, const GmshElementFilter& keep)
   auto addElement = [&](long tag, long type)
   {
     std::string refusal;
-    const int corners = keep(static_cast<int>(type), refusal);
+    const int corners = keep(type, refusal);
     if (!refusal.empty())
       file.Fail("element " + std::to_string(tag) + " " + refusal);
     if (corners <= 0)
@@ -45,7 +46,7 @@ GmshMesh ReadGmshMesh(const std::string& path, const GmshElementFilter& keep)
       nodeTags.push_back(node);
     }
     mesh.offsets.push_back(static_cast<std::int64_t>(nodeTags.size()));
-    mesh.types.push_back(static_cast<int>(type));
+    mesh.types.push_back(type);
     mesh.tags.push_back(tag);
   };
 
@@ -62,10 +63,14 @@ GmshMesh ReadGmshMesh(const std::string& path, const GmshElementFilter& keep)
         file.Fail("binary .msh files are not supported; save as ASCII (Gmsh: -format msh2 or "
                   "msh41 with Mesh.Binary=0)");
       if (!(version >= 2 && version < 3) && version != 4.1)
-        file.Fail("unsupported .msh version " + std::to_string(version) +
-          " (read: 2.2 and 4.1 ASCII; Gmsh: -format msh22 or msh41)");
+      {
+        std::ostringstream text;
+        text << "unsupported .msh version " << version
+             << " (read: 2.2 and 4.1 ASCII; Gmsh: -format msh22 or msh41)";
+        file.Fail(text.str());
+      }
     }
-    else if (token == "$Nodes")
+    else if (token == "$Nodes" || (token == "$ParametricNodes" && version < 3))
     {
       if (version == 0)
         file.Fail("$Nodes before $MeshFormat");

@@ -20,7 +20,7 @@ struct GmshMesh
   // nodes[offsets[i], offsets[i + 1]), Gmsh type types[i] and tag tags[i].
   std::vector<std::int64_t> offsets{ 0 };
   std::vector<std::int64_t> nodes;
-  std::vector<int> types;
+  std::vector<long> types;
   std::vector<long> tags;
 
   std::size_t ElementCount() const { return types.size(); }
@@ -28,7 +28,7 @@ struct GmshMesh
 
 // How many of an element's nodes to keep (its corners), by its Gmsh type: 0 skips the
 // element; a non-empty `refusal` fails the file with "element TAG " + refusal.
-using GmshElementFilter = std::function<int(int type, std::string& refusal)>;
+using GmshElementFilter = std::function<int(long type, std::string& refusal)>;
 
 // Throws FileError naming the file, the line and the defect (binary files, versions other
 // than 2.x and 4.1, nodes defined twice, elements using undefined nodes).

@@ -91,6 +91,7 @@ int RunMeshWithVtk(const MeshOptions& o)
       if (!holePoints.empty())
       {
         vtkNew<vtkPoints> holes;
+        holes->SetDataTypeToDouble(); // the lean path's doubles, bit for bit
         for (std::size_t i = 0; i < holePoints.size(); i += 3)
           holes->InsertNextPoint(&holePoints[i]);
         mesher->SetHolePoints(holes);

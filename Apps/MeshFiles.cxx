@@ -150,7 +150,7 @@ vtkSmartPointer<vtkUnstructuredGrid> ReadTetGen(const std::string& path)
 vtkSmartPointer<vtkUnstructuredGrid> ReadGmsh(const std::string& path)
 {
   const GmshMesh mesh =
-    ReadGmshMesh(path, [](int type, std::string&) { return type == 4 ? 4 : 0; });
+    ReadGmshMesh(path, [](long type, std::string&) { return type == 4 ? 4 : 0; });
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   const auto pointCount = static_cast<vtkIdType>(mesh.points.size() / 3);

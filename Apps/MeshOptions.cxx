@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <sys/stat.h>
+#include <vector>
 
 namespace tetmesher
 {
@@ -121,6 +123,33 @@ const Option* Find(const Option (&options)[N], const std::string& name)
       return &option;
   return nullptr;
 }
+
+bool SameFile(const std::string& a, const std::string& b)
+{
+  struct stat x, y;
+  return stat(a.c_str(), &x) == 0 && stat(b.c_str(), &y) == 0 && x.st_dev == y.st_dev &&
+    x.st_ino == y.st_ino;
+}
+
+// The input file (or the NAME.node a TetGen surface reads) that writing `output` would
+// replace ("" when none): TetGen output writes NAME.node, NAME.ele and NAME.face.
+std::string OverwrittenInput(const std::string& input, const std::string& output)
+{
+  const std::string inExt = LowerExtension(input), outExt = LowerExtension(output);
+  std::vector<std::string> read{ input }, written{ output };
+  if (inExt == ".face" || inExt == ".smesh" || inExt == ".poly")
+    read.push_back(input.substr(0, input.size() - inExt.size()) + ".node");
+  if (outExt == ".node" || outExt == ".ele")
+  {
+    const std::string stem = output.substr(0, output.size() - outExt.size());
+    written = { stem + ".node", stem + ".ele", stem + ".face" };
+  }
+  for (const std::string& w : written)
+    for (const std::string& r : read)
+      if (SameFile(w, r))
+        return r;
+  return "";
+}
 } // namespace
 
 int ParseMeshOptions(int argc, char* argv[], MeshOptions& o)
@@ -195,6 +224,14 @@ int ParseMeshOptions(int argc, char* argv[], MeshOptions& o)
       "tetmesher mesh: %s: unknown output type '%s' (use .vtu, .vtk, .msh, .node or .ele)\n",
       o.output.c_str(),
       outExt.c_str());
+    return 2;
+  }
+  if (const std::string clash = OverwrittenInput(o.input, o.output); !clash.empty())
+  {
+    std::fprintf(stderr,
+      "tetmesher mesh: %s: writing it would overwrite the input file %s\n",
+      o.output.c_str(),
+      clash.c_str());
     return 2;
   }
   return -1;

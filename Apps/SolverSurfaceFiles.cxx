@@ -88,11 +88,10 @@ void ReadCorners(TokenFile& file,
     long corner;
     if (!(line >> corner))
       file.Fail(what + ": expected " + std::to_string(corners) + " corners");
-    const long id = corner - first;
-    if (id < 0 || id >= surface.PointCount())
+    if (corner < first || corner - first >= surface.PointCount())
       file.Fail(what + ": corner " + std::to_string(corner) + " is not a point (points " +
         std::to_string(first) + " to " + std::to_string(first + surface.PointCount() - 1) + ")");
-    out.polygonPoints.push_back(id);
+    out.polygonPoints.push_back(corner - first);
   }
   out.polygonOffsets.push_back(static_cast<std::int64_t>(out.polygonPoints.size()));
 }
@@ -208,13 +207,16 @@ SurfaceData ReadTetGenSurface(const std::string& path, std::string& notes)
 SurfaceData ReadGmshSurface(const std::string& path)
 {
   const GmshMesh mesh = ReadGmshMesh(path,
-    [](int type, std::string& refusal)
+    [](long type, std::string& refusal)
     {
       if (type == 2)
         return 3; // the 3-node triangle
       if (type == 3)
         return 4; // the 4-node quadrangle
-      if (type == 9 || type == 10 || type == 16 || (type >= 20 && type <= 25))
+      // Gmsh's curved triangles (9, 20-25, 42-46, 52-56) and quadrangles (10, 16, 36-41,
+      // 47-51, 57-61): refused, not skipped, or the surface would arrive with holes.
+      if (type == 9 || type == 10 || type == 16 || (type >= 20 && type <= 25) ||
+        (type >= 36 && type <= 61))
         refusal = "is a curved (second- or higher-order) triangle or quadrangle (type " +
           std::to_string(type) +
           "): save the surface with first-order elements (Gmsh: Mesh.ElementOrder = 1)";

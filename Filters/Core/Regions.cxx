@@ -20,9 +20,10 @@ constexpr std::int32_t kOnSurface = -2;
 // across those faces finds them all, and every constrained face that contains p.
 std::int32_t componentOfPoint(const TetMesh& mesh,
   const std::vector<std::int32_t>& component,
-  const double* p)
+  const double* p,
+  TetId hint)
 {
-  const TetId start = locatePoint(mesh, p, -1);
+  const TetId start = locatePoint(mesh, p, hint);
   if (start < 0)
     return -1;
   std::vector<TetId> found{ start }, stack{ start };
@@ -137,9 +138,13 @@ RegionResult classifyRegions(const TetMesh& mesh, const RegionOptions& options)
   if (!result.error.empty())
     return result;
   std::vector<char> holeComponent(componentCount, 0);
+  // Each walk starts from a live tet (the exhaustive search is the walk's fallback only).
+  TetId hint = 0;
+  while (hint < capacity && mesh.isDeleted(hint))
+    ++hint;
   for (std::size_t i = 0; 3 * i < options.holePoints.size(); ++i)
   {
-    const std::int32_t c = componentOfPoint(mesh, component, &options.holePoints[3 * i]);
+    const std::int32_t c = componentOfPoint(mesh, component, &options.holePoints[3 * i], hint);
     std::ostringstream where;
     where << "hole point " << i << " (" << options.holePoints[3 * i] << ", "
           << options.holePoints[3 * i + 1] << ", " << options.holePoints[3 * i + 2] << ")";

@@ -255,7 +255,9 @@ try:
     body = ["%d 3 0 0" % len(nested_points)]
     body += ["%d %s" % (i, " ".join(p)) for i, p in enumerate(nested_points)]
     body += ["%d 0" % len(nested)] + ["3 %s" % " ".join(str(v) for v in p) for p in nested]
-    write(stem + "-hole.smesh", body + ["1", "0 0.01 0.02 0.03"])
+    # 1e-12 inside the inner ball below its vertex (0, 0.25, 0): as a float it would be that
+    # vertex, on the surface (the points are doubles on both paths).
+    write(stem + "-hole.smesh", body + ["1", "0 0 0.249999999999 0"])
     for extra in (["--boundary-only"], []):
         reference, _ = mesh_bytes(stem + ".off", stem + "-ref.msh", extra + ["--holes"])
         for path_flag in ([], ["--with-vtk"]):
@@ -306,7 +308,24 @@ try:
                              "$EndElements"], "no triangles or quadrangles"),
         "twice.msh": (["$MeshFormat", "2.2 0 8", "$EndMeshFormat", "$Nodes", "2",
                        "1 0 0 0", "1 1 0 0", "$EndNodes"], "node 1 is defined twice"),
+        "cubic.msh": (["$MeshFormat", "4.1 0 8", "$EndMeshFormat", "$Nodes", "1 1 1 1",
+                       "2 1 0 1", "1", "0 0 0", "$EndNodes", "$Elements", "1 1 5 5",
+                       "2 1 36 1", "5 1 1 1 1 1 1 1 1 1 1 1 1 1 1 1 1", "$EndElements"],
+                      "element 5 is a curved"),
+        "bigcorner.smesh": (tet + ["1 0", "3 0 1 -9223372036854775808"],
+                            "facet 0: corner -9223372036854775808 is not a point"),
     }
+    # The output must not replace what is read: TetGen output writes NAME.node, .ele, .face.
+    stem = os.path.join(work, "sphere")
+    for args in (["sphere-face.face", "-o", "sphere-face.ele"],
+                 ["sphere-one.smesh", "-o", "sphere-one.node"],
+                 ["sphere-22.msh", "-o", "sphere-22.msh"]):
+        before = open(os.path.join(work, args[0]), "rb").read()
+        code, text = run(["mesh", os.path.join(work, args[0]), "-o",
+                          os.path.join(work, args[2]), "-q"])
+        check(code == 2 and "would overwrite the input file" in text and
+              open(os.path.join(work, args[0]), "rb").read() == before,
+              "mesh %s -o %s: exit %d: %s" % (args[0], args[2], code, text))
     for name, (lines, message) in sorted(defects.items()):
         path = os.path.join(work, name)
         write(path, lines)
