@@ -8,7 +8,8 @@ and comments), .smesh numbered from 1 with its points in NAME.node and a region 
 element tags out of order, points and lines among the elements; 4.1 with parametric
 coordinates). Meshing each must give the mesh of the .off byte for byte (written as .msh,
 which holds no timing), on the lean path and with --with-vtk. Files that TetGen and Gmsh
-write themselves mesh with exactly their triangles as the boundary. A .smesh of nested spheres
+write themselves (Gmsh's in 2.2, 2.2 with parametric coordinates, and 4.1) mesh with exactly
+their triangles as the boundary. A .smesh of nested spheres
 with a hole point in the inner ball meshes as the .off with --holes. Defective files fail
 with a message naming the file and the defect, the same on both paths.
 """
@@ -202,8 +203,9 @@ try:
                     "l[] = Extrude {1, 0, 0} { Point{1}; };",
                     "s[] = Extrude {0, 1.5, 0} { Line{l[1]}; };",
                     "v[] = Extrude {0, 0, 0.7} { Surface{s[1]}; };"])
-        for fmt, extra in (("msh22", []), ("msh41", ["-setnumber", "Mesh.SaveParametric", "1"])):
-            out = os.path.join(work, "box-%s.msh" % fmt)
+        parametric = ["-setnumber", "Mesh.SaveParametric", "1"]
+        for fmt, extra in (("msh22", []), ("msh22", parametric), ("msh41", parametric)):
+            out = os.path.join(work, "box-%s-%d.msh" % (fmt, len(extra)))
             subprocess.run([gmsh, geo, "-2", "-format", fmt, *extra, "-o", out],
                            check=True, capture_output=True, timeout=300)
             code, text = run(["mesh", out, "-o", out + "-out.msh", "-q", "--boundary-only"])
@@ -211,7 +213,8 @@ try:
                 # Gmsh's triangles, by node position in the file (the reader's point ids).
                 with open(out) as f:
                     lines = [ln.strip() for ln in f]
-                nodes_at = lines.index("$Nodes")
+                # MSH 2 with parametric coordinates writes $ParametricNodes instead.
+                nodes_at = lines.index("$Nodes" if "$Nodes" in lines else "$ParametricNodes")
                 order, tri = [], []
                 if fmt == "msh22":
                     n = int(lines[nodes_at + 1])
@@ -312,7 +315,8 @@ try:
                        "2 1 0 1", "1", "0 0 0", "$EndNodes", "$Elements", "1 1 5 5",
                        "2 1 36 1", "5 1 1 1 1 1 1 1 1 1 1 1 1 1 1 1 1", "$EndElements"],
                       "element 5 is a curved"),
-        "bigcorner.smesh": (tet + ["1 0", "3 0 1 -9223372036854775808"],
+        "bigcorner.smesh": (["4 3 0 0", "1 0 0 0", "2 1 0 0", "3 0 1 0", "4 0 0 1", "1 0",
+                             "3 1 2 -9223372036854775808"],
                             "facet 0: corner -9223372036854775808 is not a point"),
     }
     # The output must not replace what is read: TetGen output writes NAME.node, .ele, .face.
