@@ -82,38 +82,16 @@ vtkSmartPointer<vtkUnstructuredGrid> ReadTetGen(const std::string& path)
 {
   const std::string nodePath = Stem(path) + ".node";
   const std::string elePath = Stem(path) + ".ele";
-  RequireReadableFile(nodePath);
+  SurfaceData nodes;
+  const long firstId = ReadTetGenNodeFile(nodePath, nodes);
   RequireReadableFile(elePath);
-  TokenFile node(nodePath);
-  std::istringstream line;
-  long count = 0, dim = 0, attributes = 0, markers = 0;
-  if (!node.NextLine(line) || !(line >> count >> dim) || count <= 0 || dim != 3)
-  {
-    node.Fail("expected a header 'pointCount 3 attributes markers'");
-  }
-  line >> attributes >> markers;
+  const long count = static_cast<long>(nodes.PointCount());
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(count);
-  long firstId = -1;
   for (long i = 0; i < count; ++i)
-  {
-    long id;
-    double x, y, z;
-    if (!node.NextLine(line) || !(line >> id >> x >> y >> z))
-    {
-      node.Fail("expected point " + std::to_string(i) + " as 'id x y z'");
-    }
-    if (i == 0)
-    {
-      firstId = id;
-    }
-    if (id - firstId != i)
-    {
-      node.Fail("point ids must be consecutive");
-    }
-    points->SetPoint(i, x, y, z);
-  }
+    points->SetPoint(i, &nodes.points[3 * static_cast<std::size_t>(i)]);
+  std::istringstream line;
   TokenFile ele(elePath);
   long tetCount = 0, perTet = 0;
   if (!ele.NextLine(line) || !(line >> tetCount >> perTet) || tetCount < 0 || perTet < 4)

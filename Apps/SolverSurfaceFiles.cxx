@@ -64,16 +64,6 @@ long ReadTetGenPointHeader(TokenFile& file, std::istringstream& line)
   return count;
 }
 
-// NAME.node's points into `surface`; the first point's number.
-long ReadTetGenNodeFile(const std::string& nodePath, SurfaceData& surface)
-{
-  RequireReadableFile(nodePath);
-  TokenFile file(nodePath);
-  std::istringstream line;
-  const long count = ReadTetGenPointHeader(file, line);
-  return ReadTetGenPoints(file, line, count, surface);
-}
-
 // Reads "corners c1 .. cn" of a polygon from `line` (the count already read) as point ids.
 void ReadCorners(TokenFile& file,
   std::istringstream& line,
@@ -129,6 +119,15 @@ void ReadHolesAndRegions(TokenFile& file,
 }
 
 } // namespace
+
+long ReadTetGenNodeFile(const std::string& nodePath, SurfaceData& surface)
+{
+  RequireReadableFile(nodePath);
+  TokenFile file(nodePath);
+  std::istringstream line;
+  const long count = ReadTetGenPointHeader(file, line);
+  return ReadTetGenPoints(file, line, count, surface);
+}
 
 SurfaceData ReadTetGenSurface(const std::string& path, std::string& notes)
 {

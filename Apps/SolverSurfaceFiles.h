@@ -23,6 +23,10 @@ namespace cli
 // .smesh, .poly, .face (lower case, with the dot).
 bool IsTetGenSurfaceExtension(const std::string& lowerExtension);
 
+// The points of a TetGen .node file into surface.points (numbered consecutively from 0 or 1,
+// as TetGen numbers them); returns that first number. Throws FileError naming the line.
+long ReadTetGenNodeFile(const std::string& nodePath, SurfaceData& surface);
+
 // TetGen's .smesh, .poly or .face, taking the points from NAME.node when the file lists none
 // (.face always). The point numbering starts at the first point's number (0 or 1), as
 // TetGen's does. `notes` receives what was read but not used (a region list, markers are
