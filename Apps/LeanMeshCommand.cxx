@@ -150,6 +150,8 @@ int RunMesh(int argc, char* argv[])
         surface.vertexCells + surface.lineCells > 0 || triangulatedPolygons > 0;
       job.triangulatedPolygons = static_cast<double>(triangulatedPolygons);
       job.holePoints = surface.holePoints;
+      job.holePoints.insert(
+        job.holePoints.end(), options.holePoints.begin(), options.holePoints.end());
       job.sizeArrayName = options.size > 0 ? kConstantSizeArray : options.sizeArray;
       job.readSizeArray = [&](std::vector<double>& sizes)
       {

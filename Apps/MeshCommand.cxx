@@ -88,6 +88,7 @@ int RunMeshWithVtk(const MeshOptions& o)
         mesher->SetControllingSpaceArrayName(o.backgroundArray.c_str());
       }
       mesher->SetEnclosedShellsAreHoles(o.holes);
+      holePoints.insert(holePoints.end(), o.holePoints.begin(), o.holePoints.end());
       if (!holePoints.empty())
       {
         vtkNew<vtkPoints> holes;

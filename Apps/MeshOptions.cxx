@@ -59,6 +59,8 @@ options:
   --with-vtk            run through VTK (vtkTetMesher, VTK's reader and writer) even
                         where the lean path needs no VTK; the same output, slower start
   --holes               enclosed shells are holes instead of regions of their own
+  --hole X,Y,Z          remove the region containing the point (X,Y,Z), as a hole in
+                        TetGen's hole list (repeatable; added to a .smesh/.poly's list)
   --max-steiner N       budget of recovery Steiner points (default 100 + 4 per triangle)
   --time-limit S        stop with an error after S seconds (default: no limit)
   --memory-limit MB     refuse a size field whose mesh is estimated above MB megabytes
@@ -182,6 +184,28 @@ int ParseMeshOptions(int argc, char* argv[], MeshOptions& o)
         return 2;
       }
       o.*(number->field) = std::min(value, number->high);
+    }
+    else if (arg == "--hole" && hasValue)
+    {
+      const char* text = argv[++i];
+      double x[3];
+      const char* at = text;
+      char* end = nullptr;
+      bool ok = true;
+      for (int k = 0; k < 3 && ok; ++k)
+      {
+        x[k] = std::strtod(at, &end);
+        ok = end != at && std::isfinite(x[k]) && *end == (k < 2 ? ',' : '\0');
+        at = end + 1;
+      }
+      if (!ok)
+      {
+        std::fprintf(stderr,
+          "tetmesher mesh: --hole wants a point X,Y,Z of three finite numbers, not '%s'\n",
+          text);
+        return 2;
+      }
+      o.holePoints.insert(o.holePoints.end(), x, x + 3);
     }
     else if (arg == "--max-steiner" && i + 1 < argc)
     {

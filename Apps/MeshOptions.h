@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <string>
+#include <vector>
 
 namespace tetmesher
 {
@@ -24,6 +25,7 @@ struct MeshOptions
   double timeLimit = 0, memoryLimit = 0, dihedralTarget = 25, size = 0, sizeScale = 1, minSize = 0,
          maxSize = 0, gradation = 1.5, qualityTarget = 0.35;
   std::string sizeArray, background, backgroundArray = "h";
+  std::vector<double> holePoints; // --hole X,Y,Z, 3 per point, in the order given
 };
 
 // Parses the arguments after `mesh`. Returns -1 when the command should run, else the exit

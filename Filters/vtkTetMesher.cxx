@@ -274,6 +274,23 @@ vtkTetMesher::~vtkTetMesher()
 
 vtkCxxSetObjectMacro(vtkTetMesher, HolePoints, vtkPoints);
 
+void vtkTetMesher::AddHolePoint(double x, double y, double z)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble(); // the CLI's doubles: the same regions on both paths
+  if (this->HolePoints)
+    for (vtkIdType i = 0; i < this->HolePoints->GetNumberOfPoints(); ++i)
+      points->InsertNextPoint(this->HolePoints->GetPoint(i));
+  points->InsertNextPoint(x, y, z);
+  this->SetHolePoints(points);
+}
+
+void vtkTetMesher::RemoveAllHolePoints()
+{
+  if (this->HolePoints && this->HolePoints->GetNumberOfPoints() > 0)
+    this->SetHolePoints(nullptr);
+}
+
 vtkMTimeType vtkTetMesher::GetMTime()
 {
   const vtkMTimeType own = this->Superclass::GetMTime();

@@ -76,6 +76,16 @@ public:
   vtkGetObjectMacro(HolePoints, vtkPoints);
   ///@}
 
+  ///@{
+  /**
+   * The hole list one point at a time (the ParaView plugin's HolePoints property).
+   * AddHolePoint appends to a copy in doubles, so a vtkPoints given to SetHolePoints is never
+   * modified; RemoveAllHolePoints empties the list.
+   */
+  void AddHolePoint(double x, double y, double z);
+  void RemoveAllHolePoints();
+  ///@}
+
   vtkMTimeType GetMTime() override;
 
   ///@{

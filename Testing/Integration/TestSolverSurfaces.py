@@ -10,7 +10,7 @@ coordinates). Meshing each must give the mesh of the .off byte for byte (written
 which holds no timing), on the lean path and with --with-vtk. Files that TetGen and Gmsh
 write themselves (Gmsh's in 2.2, 2.2 with parametric coordinates, and 4.1) mesh with exactly
 their triangles as the boundary. A .smesh of nested spheres
-with a hole point in the inner ball meshes as the .off with --holes. Defective files fail
+with a hole point in the inner ball (in the file or given by --hole) meshes as the .off with --holes. Defective files fail
 with a message naming the file and the defect, the same on both paths.
 """
 import os
@@ -267,8 +267,21 @@ try:
             got, _ = mesh_bytes(stem + "-hole.smesh", stem + "-got.msh", extra + path_flag)
             check(got is not None and got == reference,
                   "nested-hole.smesh %s: not the mesh of --holes" % " ".join(extra + path_flag))
+            # The same point given on the command line, to a surface without a hole list.
+            got, _ = mesh_bytes(stem + ".off", stem + "-got.msh",
+                                extra + path_flag + ["--hole", "0,0.249999999999,0"])
+            check(got is not None and got == reference,
+                  "nested.off --hole %s: not the mesh of --holes" % " ".join(extra + path_flag))
         unholed, _ = mesh_bytes(stem + ".off", stem + "-two.msh", extra)
         check(unholed != reference, "nested.off: --holes changes nothing (the test is void)")
+    # Wrong --hole values are refused by name; a point outside the surface is an error naming it.
+    for value in ("0,0", "0,0,0,", "a,0,0", "0,0,nan", "0;0;0"):
+        code, text = run(["mesh", stem + ".off", "-o", stem + "-x.vtu", "-q", "--hole", value])
+        check(code == 2 and "--hole wants a point X,Y,Z" in text, "--hole %s: exit %d: %s" % (value, code, text))
+    for path_flag in ([], ["--with-vtk"]):
+        code, text = run(["mesh", stem + ".off", "-o", stem + "-x.vtu", "-q", "--hole", "2,0,0"] + path_flag)
+        check(code == 1 and "hole point 0 (2, 0, 0) is outside the input surface" in text,
+              "--hole 2,0,0 %s: exit %d: %s" % (path_flag, code, text))
     write(stem + "-shell.smesh", body + ["1", "0 0.375 0.0 0.01"])
     code, text = run(["mesh", stem + "-shell.smesh", "-o", stem + "-x.vtu", "-q"])
     check(code == 1 and "bounds no kept tetrahedron (exterior or a hole point's region" in text,

@@ -62,4 +62,29 @@ bound = tet_mesh.GetFieldData().GetArray("SurfaceQualityBound").GetValue(0)
 assert abs(bound - min(1.0, caps.min())) < 1e-12, (bound, caps.min())
 print("TetMesher proxy: %d tets, boundary exact" % len(out_tets))
 
+# HolePoints, TetGen's hole list as a repeated property: a point in the inner ball of nested
+# spheres removes the ball (the volume is the outer shell's less the inner one's, exactly);
+# emptied, the ball is a region of its own again (the clean command ran).
+from mesh_invariants import enclosed_volume, shells  # noqa: E402
+
+nested_reader = XMLPolyDataReader(FileName=[os.path.join(data, "..", "..", "Data", "nested_spheres.vtp")])
+nested = servermanager.Fetch(nested_reader)
+nested_points = vtk_to_numpy(nested.GetPoints().GetData()).astype(np.float64)
+nested_triangles = vtk_to_numpy(nested.GetPolys().GetConnectivityArray()).reshape(-1, 3)
+shell_volumes = sorted((enclosed_volume(nested_points, nested_triangles[s]) for s in shells(nested_triangles)),
+                       reverse=True)
+holed = TetMesher(Input=nested_reader, Refine=0, Optimize=0)  # noqa: F821
+for hole_points, regions_expected, volume in (([0.01, 0.02, 0.03], 1, shell_volumes[0] - shell_volumes[1]),
+                                              ([], 2, shell_volumes[0])):
+    holed.HolePoints = hole_points
+    holed.UpdatePipeline()
+    result = servermanager.Fetch(holed, arg1=None, arg2=None, idx=0)
+    result_tets = vtk_to_numpy(result.GetCells().GetConnectivityArray()).reshape(-1, 4)
+    result_regions = vtk_to_numpy(result.GetCellData().GetArray("RegionId"))
+    problems = check_boundary_mesh(nested_points, nested_triangles, vtk_to_numpy(result.GetPoints().GetData()),
+                                   result_tets, result_regions, volume)
+    assert not problems, (hole_points, problems)
+    assert len(set(result_regions.tolist())) == regions_expected, (hole_points, set(result_regions.tolist()))
+print("TetMesher proxy: HolePoints removes the inner ball, and emptied keeps it")
+
 print("TestPluginPvpython: ok, Q min %.4f mean %.4f" % (q_ref.min(), q_ref.mean()))

@@ -110,6 +110,39 @@ outside.InsertNextPoint(3.0, 0.0, 0.0)
 _, hole_errors = mesh(*read_surface(os.path.join(data, "nested_spheres.vtp")), HolePoints=outside)
 if not any("hole point 0 (3, 0, 0) is outside the input surface" in e for e in hole_errors):
     failures.append(f"a hole point outside the surface: {hole_errors}")
+# AddHolePoint / RemoveAllHolePoints (the plugin's HolePoints property): the list grows as a
+# copy in doubles (the caller's vtkPoints never changes), and each change re-executes.
+adder = vtkTetMesher()
+adder.SetInputData(to_polydata(*read_surface(os.path.join(data, "nested_spheres.vtp"))))
+adder.SetRefine(False)
+adder.SetOptimize(False)
+add_errors = []
+
+
+def on_add_error(obj, event, message):
+    add_errors.append(message)
+
+
+on_add_error.CallDataType = "string0"
+adder.AddObserver(vtkCommand.ErrorEvent, on_add_error)
+adder.GetExecutive().AddObserver(vtkCommand.ErrorEvent, lambda *a: None)
+adder.SetHolePoints(hole)
+adder.Update()
+with_hole = adder.GetOutput().GetNumberOfCells()
+adder.AddHolePoint(3.0, 0.0, 0.0)
+adder.Update()
+named = any("hole point 1 (3, 0, 0) is outside the input surface" in e for e in add_errors)
+adder.RemoveAllHolePoints()
+adder.Update()
+without = adder.GetOutput().GetNumberOfCells()
+adder.AddHolePoint(0.01, 0.02, 0.03)
+adder.Update()
+added = adder.GetOutput().GetNumberOfCells()
+if not (named and without > with_hole == added and hole.GetNumberOfPoints() == 1 and
+        adder.GetHolePoints().GetDataType() == 11):  # VTK_DOUBLE
+    failures.append(f"AddHolePoint: named {named}, tets {with_hole} / {without} / {added}, "
+                    f"caller's points {hole.GetNumberOfPoints()}")
+
 # A CAD-like part whose recovery needs Steiner points (35-70): none may end up on a face.
 check("gear.vtp", 1, Refine=False, Optimize=False)
 
