@@ -9,6 +9,7 @@
 #include "MeshTopology.h"
 #include "Predicates.h"
 #include "RecoveryGeometry.h"
+#include "TriangleBoxGrid.h"
 #include "TriangleDistance.h"
 #include "TriangleIndex.h"
 #include "TriangleIntersection.h"
@@ -426,6 +427,19 @@ private:
   VertexTetIndex index_;
   std::vector<std::int32_t> edgeStart_; // input edges by their first point (isInputEdge)
   std::vector<std::array<double, 6>> triangleBoxes_;
+  // triangleBoxes_ in a grid, built on the first question (most runs never ask).
+  mutable std::unique_ptr<TriangleBoxGrid> boxGrid_;
+  mutable std::vector<std::int32_t> nearScratch_;
+  mutable double largestTriangle_ = -1; // the longest input edge, once nearlyTouchingTriangles asks
+  // The triangles whose boxes may come within `margin` of `box` (TriangleBoxGrid::near).
+  const std::vector<std::int32_t>& trianglesNear(const std::array<double, 6>& box,
+    double margin) const
+  {
+    if (!boxGrid_)
+      boxGrid_ = std::make_unique<TriangleBoxGrid>(triangleBoxes_);
+    boxGrid_->near(box, margin, nearScratch_);
+    return nearScratch_;
+  }
   std::unique_ptr<InsertionWorkspace, WorkspaceDeleter> workspace_{ createInsertionWorkspace() };
   RecoveryResult result_;
   // Input triangles by point: those of point v are vertexTriangles_[vertexTriangleStart_[v] ..
@@ -692,16 +706,15 @@ bool Recovery::insertSteiner(const double* c, TetId tet)
     return false;
   }
   result_.steinerVertices.push_back(id);
-  // A full rebuild (O(mesh), and Steiner points are few): repairing only the new point's star
-  // would be enough for correctness, but it changes which incident tet each vertex starts its
-  // star from, hence the tie-breaking order of the flip search; the corpus (gear.vtp) showed
-  // that recovery is sensitive to that order, so keep the order of the tested version.
-  index_.rebuild(mesh_);
+  index_.note(r.tet, mesh_);
   std::vector<TetId> star;
   vertexStar(mesh_, index_, id, star);
   for (TetId t : star)
+  {
+    index_.note(t, mesh_);
     for (int i = 0; i < 4; ++i)
       touch(mesh_.vertex(t, i));
+  }
   return true;
 }
 
@@ -1199,13 +1212,13 @@ bool Recovery::removeCrossingDeep(const std::vector<TetId>& pipe,
 
 bool Recovery::onInputSurface(const double* x, double tolerance) const
 {
-  for (std::size_t i = 0; i < surface_.triangles.size(); ++i)
+  for (const std::int32_t i : trianglesNear({ x[0], x[1], x[2], x[0], x[1], x[2] }, tolerance))
   {
-    const auto& box = triangleBoxes_[i];
+    const auto& box = triangleBoxes_[static_cast<std::size_t>(i)];
     if (x[0] < box[0] - tolerance || x[1] < box[1] - tolerance || x[2] < box[2] - tolerance ||
       x[0] > box[3] + tolerance || x[1] > box[4] + tolerance || x[2] > box[5] + tolerance)
       continue;
-    const auto& t = surface_.triangles[i];
+    const auto& t = surface_.triangles[static_cast<std::size_t>(i)];
     if (geometry::pointOnTriangle(x, point(t[0]), point(t[1]), point(t[2])) ||
       geometry::pointTriangleDistanceSquared(x, point(t[0]), point(t[1]), point(t[2])) <
         tolerance * tolerance)
@@ -1325,10 +1338,11 @@ std::vector<std::size_t> Recovery::itemTriangles(std::size_t key) const
   else
   {
     const VertexId a = surface_.edges[key][0], b = surface_.edges[key][1];
-    for (std::size_t i = 0; i < triangles.size(); ++i)
+    for (std::int32_t k = vertexTriangleStart_[a]; k < vertexTriangleStart_[a + 1]; ++k)
     {
+      const std::size_t i = static_cast<std::size_t>(vertexTriangles_[static_cast<std::size_t>(k)]);
       const auto& t = triangles[i];
-      if (std::count(t.begin(), t.end(), a) + std::count(t.begin(), t.end(), b) == 2)
+      if (std::count(t.begin(), t.end(), b) > 0)
         mine.push_back(i);
     }
   }
@@ -1356,8 +1370,16 @@ std::string Recovery::nearlyTouchingTriangles(std::size_t key) const
     const double* p[3] = { point(t[0]), point(t[1]), point(t[2]) };
     const auto& box = triangleBoxes_[i];
     const double sizeI = longestEdge(p);
-    for (std::size_t j = 0; j < triangles.size(); ++j)
+    if (largestTriangle_ < 0)
+      for (const auto& u : triangles)
+      {
+        const double* q[3] = { point(u[0]), point(u[1]), point(u[2]) };
+        largestTriangle_ = std::max(largestTriangle_, longestEdge(q));
+      }
+    const double margin = options_.nearTouchRatio * std::max(sizeI, largestTriangle_);
+    for (const std::int32_t near : trianglesNear(box, margin))
     {
+      const std::size_t j = static_cast<std::size_t>(near);
       const auto& u = triangles[j];
       const double* q[3] = { point(u[0]), point(u[1]), point(u[2]) };
       const double size = std::max(sizeI, longestEdge(q));
@@ -1415,8 +1437,9 @@ std::string Recovery::intersectingTriangles(std::size_t key) const
     const double* p[3] = { point(t[0]), point(t[1]), point(t[2]) };
     if (isTriangleDegenerate(p[0], p[1], p[2]))
       continue;
-    for (std::size_t j = 0; j < triangles.size(); ++j)
+    for (const std::int32_t near : trianglesNear(triangleBoxes_[i], 0))
     {
+      const std::size_t j = static_cast<std::size_t>(near);
       const auto& u = triangles[j];
       if (j == i || !overlap(triangleBoxes_[i], triangleBoxes_[j]))
         continue;
