@@ -20,8 +20,8 @@ data = sys.argv[1]
 failures = []
 
 
-def mesh(points, triangles, **properties):
-    mesher = vtkTetMesher()
+def collect_errors(mesher):
+    """The list the mesher's error messages will be appended to (and kept off the console)."""
     errors = []
 
     def on_error(obj, event, message):
@@ -29,6 +29,12 @@ def mesh(points, triangles, **properties):
     on_error.CallDataType = "string0"
     mesher.AddObserver(vtkCommand.ErrorEvent, on_error)
     mesher.GetExecutive().AddObserver(vtkCommand.ErrorEvent, lambda *a: None)
+    return errors
+
+
+def mesh(points, triangles, **properties):
+    mesher = vtkTetMesher()
+    errors = collect_errors(mesher)
     poly = to_polydata(points, triangles)
     mesher.SetInputData(poly)
     for name, value in properties.items():
@@ -116,16 +122,7 @@ adder = vtkTetMesher()
 adder.SetInputData(to_polydata(*read_surface(os.path.join(data, "nested_spheres.vtp"))))
 adder.SetRefine(False)
 adder.SetOptimize(False)
-add_errors = []
-
-
-def on_add_error(obj, event, message):
-    add_errors.append(message)
-
-
-on_add_error.CallDataType = "string0"
-adder.AddObserver(vtkCommand.ErrorEvent, on_add_error)
-adder.GetExecutive().AddObserver(vtkCommand.ErrorEvent, lambda *a: None)
+add_errors = collect_errors(adder)
 adder.SetHolePoints(hole)
 adder.Update()
 with_hole = adder.GetOutput().GetNumberOfCells()
