@@ -1,7 +1,10 @@
 #include "SolverSurfaceFiles.h"
 
+#include "FacetHoles.h"
 #include "GmshFile.h"
 
+#include <array>
+#include <cmath>
 #include <cstdint>
 
 namespace tetmesher
@@ -84,6 +87,42 @@ void ReadCorners(TokenFile& file,
     out.polygonPoints.push_back(corner - first);
   }
   out.polygonOffsets.push_back(static_cast<std::int64_t>(out.polygonPoints.size()));
+}
+
+// A .poly facet's hole points ("number x y z" per line, `holes` of them) and what they leave of
+// its polygons (`polygons`, read apart), added to `surface`.
+void AddFacetWithoutHoles(TokenFile& file,
+  std::istringstream& line,
+  long holes,
+  const SurfaceData& polygons,
+  SurfaceData& surface,
+  const std::string& facet)
+{
+  std::vector<std::array<double, 3>> points;
+  for (long h = 0; h < holes; ++h)
+  {
+    long number;
+    double x, y, z;
+    if (!file.NextLine(line) || !(line >> number >> x >> y >> z))
+      file.Fail(facet + ": expected hole " + std::to_string(h + 1) + " of " +
+        std::to_string(holes) + " as 'number x y z'");
+    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
+      file.Fail(facet + ": hole " + std::to_string(h + 1) + " is not a finite point");
+    points.push_back({ x, y, z });
+  }
+  std::vector<std::vector<std::int64_t>> parts;
+  for (std::int64_t p = 0; p < polygons.PolygonCount(); ++p)
+    parts.emplace_back(polygons.polygonPoints.begin() + polygons.polygonOffsets[p],
+      polygons.polygonPoints.begin() + polygons.polygonOffsets[p + 1]);
+  std::string error;
+  const auto kept = FacetWithoutHoles(surface.points, parts, points, error);
+  if (!error.empty())
+    file.Fail(facet + " with holes: " + error);
+  for (const auto& polygon : kept)
+  {
+    surface.polygonPoints.insert(surface.polygonPoints.end(), polygon.begin(), polygon.end());
+    surface.polygonOffsets.push_back(static_cast<std::int64_t>(surface.polygonPoints.size()));
+  }
 }
 
 // Parts 3 and 4 of .smesh and .poly: the hole list (into surface.holePoints) and the region
@@ -179,6 +218,13 @@ SurfaceData ReadTetGenSurface(const std::string& path, std::string& notes)
       if (!(line >> polygons) || polygons < 1)
         file.Fail(facet + ": expected '<polygons> [holes] [marker]'");
       line >> holes;
+      if (holes < 0)
+        file.Fail(facet + ": negative hole count " + std::to_string(holes));
+      // Without holes the polygons go straight to the surface; with holes they are read
+      // apart, then what the hole points leave of them is added (FacetHoles.h).
+      SurfaceData facetPolygons;
+      facetPolygons.polygonOffsets.push_back(0);
+      SurfaceData& into = holes > 0 ? facetPolygons : surface;
       for (long p = 0; p < polygons; ++p)
       {
         long corners;
@@ -190,12 +236,10 @@ SurfaceData ReadTetGenSurface(const std::string& path, std::string& notes)
             std::to_string(corners) +
             " corner(s): segments and points inside a facet are not supported (give the "
             "facet as polygons of 3 or more corners)");
-        ReadCorners(file, line, corners, first, surface, surface, facet);
+        ReadCorners(file, line, corners, first, surface, into, facet);
       }
       if (holes > 0)
-        file.Fail(facet + " has " + std::to_string(holes) +
-          " hole(s): facets with holes are not supported (give the facet as polygons "
-          "around the hole, e.g. its triangles)");
+        AddFacetWithoutHoles(file, line, holes, facetPolygons, surface, facet);
     }
   }
   if (ext != ".face")
