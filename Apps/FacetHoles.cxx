@@ -257,10 +257,15 @@ std::vector<Polygon> FacetWithoutHoles(const std::vector<double>& points,
     else
       ringRemoved = true;
   }
+  // Kept inner polygons turn as the outer one: the facet's parts share its orientation.
   std::vector<Polygon> kept;
   for (std::size_t p : inner)
     if (!removed[p])
+    {
       kept.push_back(polygons[p]);
+      if (plane.orientation(kept.back()) != outerTurn)
+        std::reverse(kept.back().begin(), kept.back().end());
+    }
   if (ringRemoved)
   {
     if (kept.empty())

@@ -154,17 +154,21 @@ def msh_mesh(path):
     return points, triangles
 
 
-def frame_poly(bottom_hole=(1.5, 1.5), nested=False):
+def frame_poly(bottom_hole=(1.5, 1.5), nested=False, patch=False):
     """A 3x3x1 box with a 1x1 tunnel through it, as TetGen's .poly: the bottom and top facets
     are a square around a square, with a hole point each (the bottom one at `bottom_hole`;
-    `nested` adds a third square inside the inner one); facets oriented outwards. Volume 8."""
+    `nested` adds a third square inside the inner one; `patch` a kept square on the bottom,
+    written turning the other way); facets oriented outwards. Volume 8."""
     xy = [(0, 0), (3, 0), (3, 3), (0, 3), (1, 1), (2, 1), (2, 2), (1, 2)]
     xy += [(1.25, 1.25), (1.75, 1.25), (1.75, 1.75), (1.25, 1.75)] if nested else []
-    rows = ["%d 3 0 0" % (2 * len(xy))]
+    square = [(2.25, 0.25), (2.75, 0.25), (2.75, 0.75), (2.25, 0.75)] if patch else []
+    rows = ["%d 3 0 0" % (2 * len(xy) + len(square))]
     for z in (0, 1):
         rows += ["%d %r %r %d" % (z * len(xy) + k, float(x), float(y), z) for k, (x, y) in enumerate(xy)]
+    rows += ["%d %r %r 0" % (2 * len(xy) + k, x, y) for k, (x, y) in enumerate(square)]
     n = len(xy)
-    bottom = ["3 1" if nested else "2 1", "4 0 3 2 1", "4 4 5 6 7"] + (["4 8 9 10 11"] if nested else [])
+    bottom = ["%d 1" % (2 + nested + patch), "4 0 3 2 1", "4 4 5 6 7"] + (["4 8 9 10 11"] if nested else [])
+    bottom += ["4 %d %d %d %d" % tuple(2 * n + k for k in range(4))] if patch else []
     bottom += ["1 %r %r 0" % bottom_hole]
     top = ["2 1", "4 %d %d %d %d" % (n, n + 1, n + 2, n + 3), "4 %d %d %d %d" % (n + 4, n + 5, n + 6, n + 7),
            "1 1.5 1.5 1"]
@@ -334,15 +338,16 @@ try:
     # its 32 surface triangles (8 on the top and on the bottom, none across the tunnel), no
     # warning, the same on both paths.
     frame = os.path.join(work, "frame.poly")
-    write(frame, frame_poly())
-    for path_flag in ([], ["--with-vtk"]):
+    for path_flag, patch in (([], False), (["--with-vtk"], False), ([], True)):
+        write(frame, frame_poly(patch=patch))
         got, text = mesh_bytes(frame, os.path.join(work, "frame.msh"), ["--boundary-only"] + path_flag)
         if got is None:
             continue
         _, boundary = msh_mesh(os.path.join(work, "frame.msh"))
         volume = msh_volume(os.path.join(work, "frame.msh"))
-        check(volume == 6 * 8 and len(boundary) == 32 and "warning" not in text,
-              "frame.poly %s: 6 x volume %s, %d boundary triangles, %s" % (path_flag, volume, len(boundary), text))
+        check(volume == 6 * 8 and len(boundary) == 32 + 8 * patch and "warning" not in text,
+              "frame.poly %s patch %s: 6 x volume %s, %d boundary triangles, %s"
+              % (path_flag, patch, volume, len(boundary), text))
 
     # TetGen's own example.poly (Debian's tetgen package; facet 3 has a hole): without its
     # volume hole list (whose first point empties a box that touches the outside, which this
