@@ -1,5 +1,6 @@
 #include "FacetHoles.h"
 
+#include "PolygonTriangulation.h"
 #include "Predicates.h"
 
 #include <algorithm>
@@ -15,8 +16,10 @@ namespace
 
 using Polygon = std::vector<std::int64_t>;
 
-// Slits are searched among all corners against all edges: quadratic, so facets are bounded.
-constexpr std::size_t kMaxFacetCorners = 4096;
+// The joined polygon has the outer corners and, per inner polygon, its corners and 2 for the
+// slit; beyond the ear clipper's bound it would be fanned (overlapping triangles), so such a
+// facet is refused. That bound also keeps the quadratic searches below small.
+constexpr std::size_t kMaxJoinedCorners = static_cast<std::size_t>(kMaxEarClippedCorners);
 
 struct Plane
 {
@@ -84,6 +87,16 @@ struct Plane
     if ((o3 == 0 && within(a, b, m)) || (o4 == 0 && within(a, b, v)))
       return true;
     return o1 * o2 < 0 && o3 * o4 < 0;
+  }
+  // The closed segments ab and cd share a point.
+  bool meet(const double* a, const double* b, const double* c, const double* d) const
+  {
+    const int o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a),
+              o4 = orient(c, d, b);
+    if (o1 * o2 < 0 && o3 * o4 < 0)
+      return true;
+    return (o1 == 0 && within(a, b, c)) || (o2 == 0 && within(a, b, d)) ||
+      (o3 == 0 && within(c, d, a)) || (o4 == 0 && within(c, d, b));
   }
   // m strictly inside the angle p-v-n of a counter-clockwise polygon.
   bool inCone(const double* p, const double* v, const double* n, const double* m) const
@@ -158,11 +171,25 @@ std::vector<Polygon> FacetWithoutHoles(const std::vector<double>& points,
 {
   error.clear();
   std::size_t corners = 0;
-  for (const Polygon& polygon : polygons)
-    corners += polygon.size();
-  if (corners > kMaxFacetCorners)
+  for (std::size_t p = 0; p < polygons.size(); ++p)
   {
-    error = "more than " + std::to_string(kMaxFacetCorners) + " corners with holes";
+    corners += polygons[p].size() + 2;
+    for (std::size_t k = 0; k < polygons[p].size(); ++k)
+    {
+      const double* a = &points[3 * static_cast<std::size_t>(polygons[p][k])];
+      const double* b =
+        &points[3 * static_cast<std::size_t>(polygons[p][(k + 1) % polygons[p].size()])];
+      if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
+      {
+        error = "polygon " + std::to_string(p + 1) + " repeats a corner";
+        return {};
+      }
+    }
+  }
+  if (corners > kMaxJoinedCorners + 2)
+  {
+    error = "more than " + std::to_string(kMaxJoinedCorners) +
+      " corners once its polygons are joined (the ear clipper's bound)";
     return {};
   }
   // The outer polygon: the one of largest area (Newell normal), whose normal picks the plane.
@@ -230,6 +257,23 @@ std::vector<Polygon> FacetWithoutHoles(const std::vector<double>& points,
           std::to_string(q + 1) + " (polygons nested two deep are not supported)";
         return {};
       }
+  // No two polygons share a point (the vertex tests above miss crossing edges).
+  for (std::size_t p = 0; p < polygons.size(); ++p)
+    for (std::size_t q = p + 1; q < polygons.size(); ++q)
+      for (std::size_t k = 0; k < polygons[p].size(); ++k)
+        for (std::size_t l = 0; l < polygons[q].size(); ++l)
+        {
+          const Polygon &a = polygons[p], &b = polygons[q];
+          if (plane.meet(plane.at(a[k]),
+                plane.at(a[(k + 1) % a.size()]),
+                plane.at(b[l]),
+                plane.at(b[(l + 1) % b.size()])))
+          {
+            error = "polygons " + std::to_string(p + 1) + " and " + std::to_string(q + 1) +
+              " cross or touch";
+            return {};
+          }
+        }
   // Each hole point removes the inner polygon it lies in, or the part around the inner ones.
   std::vector<char> removed(polygons.size(), 0);
   bool ringRemoved = false;
@@ -283,13 +327,30 @@ std::vector<Polygon> FacetWithoutHoles(const std::vector<double>& points,
     if (plane.orientation(apart.back()) > 0)
       std::reverse(apart.back().begin(), apart.back().end());
   }
-  for (std::size_t h = 0; h < apart.size(); ++h)
+  // A hole may see no corner of the ring until another one is joined (one inside a C-shaped
+  // one): passes over the holes left, until all are joined or a pass joins none.
+  std::vector<char> joined(apart.size(), 0);
+  for (std::size_t left = apart.size(); left > 0;)
   {
-    std::vector<const Polygon*> others;
-    for (std::size_t k = h + 1; k < apart.size(); ++k)
-      others.push_back(&apart[k]);
-    if (!JoinHole(plane, ring, apart[h], others))
+    const std::size_t before = left;
+    for (std::size_t h = 0; h < apart.size(); ++h)
     {
+      if (joined[h])
+        continue;
+      std::vector<const Polygon*> others;
+      for (std::size_t k = 0; k < apart.size(); ++k)
+        if (k != h && !joined[k])
+          others.push_back(&apart[k]);
+      if (JoinHole(plane, ring, apart[h], others))
+      {
+        joined[h] = 1;
+        --left;
+      }
+    }
+    if (left == before)
+    {
+      const std::size_t h =
+        static_cast<std::size_t>(std::find(joined.begin(), joined.end(), 0) - joined.begin());
       error = "no slit joins polygon " + std::to_string(inner[h] + 1) + " to the polygon around it";
       return {};
     }

@@ -1338,11 +1338,13 @@ std::vector<std::size_t> Recovery::itemTriangles(std::size_t key) const
   else
   {
     const VertexId a = surface_.edges[key][0], b = surface_.edges[key][1];
+    // a's triangles, each once (one listing a twice is there twice), as a scan would pick them.
     for (std::int32_t k = vertexTriangleStart_[a]; k < vertexTriangleStart_[a + 1]; ++k)
     {
       const std::size_t i = static_cast<std::size_t>(vertexTriangles_[static_cast<std::size_t>(k)]);
       const auto& t = triangles[i];
-      if (std::count(t.begin(), t.end(), b) > 0)
+      if ((mine.empty() || mine.back() != i) &&
+        std::count(t.begin(), t.end(), a) + std::count(t.begin(), t.end(), b) == 2)
         mine.push_back(i);
     }
   }

@@ -70,7 +70,7 @@ TriangleBoxGrid::TriangleBoxGrid(const std::vector<Box>& boxes)
   for (std::size_t c = 0; c < cellCount; ++c)
     cellStart_[c + 1] += cellStart_[c];
   cellItems_.resize(static_cast<std::size_t>(cellStart_[cellCount]));
-  std::vector<std::int32_t> next(cellStart_.begin(), cellStart_.end() - 1);
+  std::vector<std::int64_t> next(cellStart_.begin(), cellStart_.end() - 1);
   for (std::size_t i = 0; i < count; ++i)
     forCells(boxes[i],
       [&](std::size_t c)
@@ -82,10 +82,12 @@ void TriangleBoxGrid::cellRange(const Box& box, double margin, int lo[3], int hi
   for (int a = 0; a < 3; ++a)
   {
     // floor((v - origin) / size) is monotone in v, for the boxes and the queries alike.
+    // A NaN bound takes the whole axis (a superset is never wrong).
     const double low = std::floor((box[a] - margin - origin_[a]) / cellSize_);
     const double high = std::floor((box[a + 3] + margin - origin_[a]) / cellSize_);
-    lo[a] = static_cast<int>(std::clamp(low, 0.0, static_cast<double>(dims_[a] - 1)));
-    hi[a] = static_cast<int>(std::clamp(high, 0.0, static_cast<double>(dims_[a] - 1)));
+    const double last = static_cast<double>(dims_[a] - 1);
+    lo[a] = std::isnan(low) ? 0 : static_cast<int>(std::clamp(low, 0.0, last));
+    hi[a] = std::isnan(high) ? dims_[a] - 1 : static_cast<int>(std::clamp(high, 0.0, last));
   }
 }
 
@@ -116,7 +118,7 @@ void TriangleBoxGrid::near(const Box& box, double margin, std::vector<std::int32
       for (int x = lo[0]; x <= hi[0]; ++x)
       {
         const std::size_t c = (static_cast<std::size_t>(z) * dims_[1] + y) * dims_[0] + x;
-        for (std::int32_t k = cellStart_[c]; k < cellStart_[c + 1]; ++k)
+        for (std::int64_t k = cellStart_[c]; k < cellStart_[c + 1]; ++k)
           take(cellItems_[static_cast<std::size_t>(k)]);
       }
   std::sort(out.begin(), out.end());

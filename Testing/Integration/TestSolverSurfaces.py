@@ -13,6 +13,7 @@ their triangles as the boundary. A .smesh of nested spheres
 with a hole point in the inner ball (in the file or given by --hole) meshes as the .off with --holes. Defective files fail
 with a message naming the file and the defect, the same on both paths.
 """
+import math
 import os
 import random
 import shutil
@@ -154,21 +155,24 @@ def msh_mesh(path):
     return points, triangles
 
 
-def frame_poly(bottom_hole=(1.5, 1.5), nested=False, patch=False):
+def frame_poly(bottom_hole=(1.5, 1.5), nested=False, patches=()):
     """A 3x3x1 box with a 1x1 tunnel through it, as TetGen's .poly: the bottom and top facets
     are a square around a square, with a hole point each (the bottom one at `bottom_hole`;
-    `nested` adds a third square inside the inner one; `patch` a kept square on the bottom,
-    written turning the other way); facets oriented outwards. Volume 8."""
+    `nested` adds a third square inside the inner one; `patches`, polygons given by their
+    (x, y), are kept on the bottom); facets oriented outwards. Volume 8."""
     xy = [(0, 0), (3, 0), (3, 3), (0, 3), (1, 1), (2, 1), (2, 2), (1, 2)]
     xy += [(1.25, 1.25), (1.75, 1.25), (1.75, 1.75), (1.25, 1.75)] if nested else []
-    square = [(2.25, 0.25), (2.75, 0.25), (2.75, 0.75), (2.25, 0.75)] if patch else []
-    rows = ["%d 3 0 0" % (2 * len(xy) + len(square))]
+    extra = [p for patch in patches for p in patch]
+    rows = ["%d 3 0 0" % (2 * len(xy) + len(extra))]
     for z in (0, 1):
         rows += ["%d %r %r %d" % (z * len(xy) + k, float(x), float(y), z) for k, (x, y) in enumerate(xy)]
-    rows += ["%d %r %r 0" % (2 * len(xy) + k, x, y) for k, (x, y) in enumerate(square)]
+    rows += ["%d %r %r 0" % (2 * len(xy) + k, x, y) for k, (x, y) in enumerate(extra)]
     n = len(xy)
-    bottom = ["%d 1" % (2 + nested + patch), "4 0 3 2 1", "4 4 5 6 7"] + (["4 8 9 10 11"] if nested else [])
-    bottom += ["4 %d %d %d %d" % tuple(2 * n + k for k in range(4))] if patch else []
+    bottom = ["%d 1" % (2 + nested + len(patches)), "4 0 3 2 1", "4 4 5 6 7"] + (["4 8 9 10 11"] if nested else [])
+    first = 2 * n
+    for patch in patches:
+        bottom.append("%d %s" % (len(patch), " ".join(str(first + k) for k in range(len(patch)))))
+        first += len(patch)
     bottom += ["1 %r %r 0" % bottom_hole]
     top = ["2 1", "4 %d %d %d %d" % (n, n + 1, n + 2, n + 3), "4 %d %d %d %d" % (n + 4, n + 5, n + 6, n + 7),
            "1 1.5 1.5 1"]
@@ -337,17 +341,26 @@ try:
     # 4. TetGen facets with holes: the box with a tunnel meshes with the volume 8 exactly and
     # its 32 surface triangles (8 on the top and on the bottom, none across the tunnel), no
     # warning, the same on both paths.
+    # Kept patches: a square written turning the other way (no orientation warning), and a
+    # triangle inside a C-shaped polygon, listed first: it sees no corner of the ring until
+    # the C is joined. Bottom triangles: ring corners + 2 x holes - 2, plus each patch's.
+    square = [(2.25, 0.25), (2.75, 0.25), (2.75, 0.75), (2.25, 0.75)]
+    c_shape = [(2.3, 0.55), (2.3, 0.7), (2.7, 0.7), (2.7, 0.3), (2.3, 0.3), (2.3, 0.45),
+               (2.2, 0.45), (2.2, 0.2), (2.8, 0.2), (2.8, 0.8), (2.2, 0.8), (2.2, 0.55)]
+    inside_c = [(2.49, 0.49), (2.51, 0.5), (2.49, 0.51)]
     frame = os.path.join(work, "frame.poly")
-    for path_flag, patch in (([], False), (["--with-vtk"], False), ([], True)):
-        write(frame, frame_poly(patch=patch))
+    for path_flag, patches in (([], ()), (["--with-vtk"], ()), ([], (square,)), ([], (inside_c, c_shape))):
+        write(frame, frame_poly(patches=patches))
+        corners = 8 + sum(len(p) for p in patches)
+        bottom = corners + 2 * (1 + len(patches)) - 2 + sum(len(p) - 2 for p in patches)
         got, text = mesh_bytes(frame, os.path.join(work, "frame.msh"), ["--boundary-only"] + path_flag)
         if got is None:
             continue
         _, boundary = msh_mesh(os.path.join(work, "frame.msh"))
         volume = msh_volume(os.path.join(work, "frame.msh"))
-        check(volume == 6 * 8 and len(boundary) == 32 + 8 * patch and "warning" not in text,
-              "frame.poly %s patch %s: 6 x volume %s, %d boundary triangles, %s"
-              % (path_flag, patch, volume, len(boundary), text))
+        check(volume == 6 * 8 and len(boundary) == 24 + bottom and "warning" not in text,
+              "frame.poly %s, %d patches: 6 x volume %s, %d boundary triangles, %s"
+              % (path_flag, len(patches), volume, len(boundary), text))
 
     # TetGen's own example.poly (Debian's tetgen package; facet 3 has a hole): without its
     # volume hole list (whose first point empties a box that touches the outside, which this
@@ -389,6 +402,15 @@ try:
                            "facet 0 with holes: its hole points leave nothing of it"),
         "holeoutside.poly": (frame_poly((5, 5)), "facet 0 with holes: hole 1 lies outside its polygons"),
         "holeonedge.poly": (frame_poly((1, 1.5)), "facet 0 with holes: hole 1 lies on one of its polygons"),
+        "crossing.poly": (frame_poly(patches=([(2.1, 0.4), (2.9, 0.4), (2.9, 0.6), (2.1, 0.6)],
+                                              [(2.4, 0.1), (2.6, 0.1), (2.6, 0.9), (2.4, 0.9)])),
+                          "facet 0 with holes: polygons 3 and 4 cross or touch"),
+        "repeated.poly": (frame_poly(patches=([(2.25, 0.25), (2.75, 0.25), (2.75, 0.25), (2.5, 0.75)],)),
+                          "facet 0 with holes: polygon 3 repeats a corner"),
+        "bigring.poly": (frame_poly(patches=([(2.5 + 0.2 * math.cos(2 * math.pi * k / 1100),
+                                               0.5 + 0.2 * math.sin(2 * math.pi * k / 1100))
+                                              for k in range(1100)],)),
+                         "facet 0 with holes: more than 1024 corners once its polygons are joined"),
         "nested.poly": (frame_poly((1.5, 1.5), nested=True),
                         "facet 0 with holes: polygon 3 lies inside polygon 2 (polygons nested two deep"),
         "missing.face": (["4 0"] + ["%d %s" % (i, f[2:]) for i, f in enumerate(faces)],
