@@ -12,7 +12,9 @@
 #include "TetMesh.h"
 #include "TriangleIndex.h"
 
+#include <algorithm>
 #include <chrono>
+#include <functional>
 #include <sstream>
 
 namespace tetmesher
@@ -23,6 +25,60 @@ double secondsSince(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+// Why input triangle i bounds no kept tet: what lies on its two sides (tetRegion's codes,
+// Regions.h), found by a scan of the constrained faces (the error path only).
+std::string unkeptTriangleError(const TetMesh& mesh,
+  const TriangleIndex& triangleOf,
+  std::int32_t i,
+  const std::vector<std::int32_t>& tetRegion,
+  const std::vector<double>& holePoints)
+{
+  std::vector<std::int32_t> sides;
+  for (TetId t = 0; t < mesh.tetCapacity() && sides.size() < 2; ++t)
+  {
+    if (mesh.isDeleted(t))
+      continue;
+    for (int f = 0; f < 4; ++f)
+    {
+      const int* fv = kFaceVertices[f];
+      if (mesh.isConstrained(t, f) &&
+        triangleOf.find(mesh.vertex(t, fv[0]), mesh.vertex(t, fv[1]), mesh.vertex(t, fv[2])) == i)
+        sides.push_back(
+          static_cast<std::size_t>(t) < tetRegion.size() ? tetRegion[t] : kExteriorTet);
+    }
+  }
+  std::sort(sides.begin(), sides.end(), std::greater<>()); // the exterior first
+  bool holePoint = false;
+  auto describe = [&](std::int32_t code)
+  {
+    std::ostringstream out;
+    if (code == kEnclosedHoleTet)
+      out << "an enclosed shell's hole";
+    else if (code <= holePointTet(0))
+    {
+      const std::size_t k = static_cast<std::size_t>(holePointTet(0) - code);
+      holePoint = true;
+      out << "the region of hole point " << k << " (" << holePoints[3 * k] << ", "
+          << holePoints[3 * k + 1] << ", " << holePoints[3 * k + 2] << ")";
+    }
+    else
+      out << "the exterior";
+    return out.str();
+  };
+  std::string message = "input triangle " + std::to_string(i) + " bounds no kept tetrahedron";
+  if (sides.size() == 2 && sides[0] == sides[1])
+    message += ": " + describe(sides[0]) + " on both sides";
+  else if (sides.size() == 2)
+    message += ": " + describe(sides[0]) + " on one side, " + describe(sides[1]) + " on the other";
+  else
+    message += holePoints.empty() ? " (exterior on both sides)"
+                                  : " (exterior or a hole point's region on both sides)";
+  if (holePoint)
+    message += " (TetGen drops such a triangle; the boundary here is the input's exactly: remove "
+               "the triangle from the input, or the hole point)";
+  return message;
+}
+
 } // namespace
 
 MesherResult meshSurface(const double* points,
@@ -229,9 +285,8 @@ MesherResult meshSurface(const double* points,
     {
       // Only possible if a triangle has exterior (or hole) on both sides: a fin or a wall
       // inside a hole, or a hole point's region between the triangle and the exterior.
-      result.error = "input triangle " + std::to_string(i) + " bounds no kept tetrahedron " +
-        (options.holePoints.empty() ? "(exterior on both sides)"
-                                    : "(exterior or a hole point's region on both sides)");
+      result.error =
+        unkeptTriangleError(mesh, triangleOf, i, regions.tetRegion, options.holePoints);
       result.points.clear();
       result.tets.clear();
       result.regionIds.clear();

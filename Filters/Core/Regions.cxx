@@ -137,7 +137,7 @@ RegionResult classifyRegions(const TetMesh& mesh, const RegionOptions& options)
     "hole point");
   if (!result.error.empty())
     return result;
-  std::vector<char> holeComponent(componentCount, 0);
+  std::vector<std::int32_t> holeComponent(componentCount, 0); // 1 + the first hole point's index
   // Each walk starts from a live tet (the exhaustive search is the walk's fallback only).
   TetId hint = 0;
   while (hint < capacity && mesh.isDeleted(hint))
@@ -154,17 +154,22 @@ RegionResult classifyRegions(const TetMesh& mesh, const RegionOptions& options)
       result.error = where.str() + " is outside the input surface";
     if (!result.error.empty())
       return result;
-    holeComponent[c] = 1;
+    if (holeComponent[c] == 0)
+      holeComponent[c] = static_cast<std::int32_t>(i) + 1;
   }
-  std::vector<std::int32_t> regionOf(componentCount, -1);
+  std::vector<std::int32_t> regionOf(componentCount, kExteriorTet);
   for (std::int32_t c = 0; c < componentCount; ++c)
   {
-    bool hole =
-      (options.enclosedShellsAreHoles && depth[c] >= 2 && depth[c] % 2 == 0) || holeComponent[c];
-    if (depth[c] != 0 && !hole)
+    if (depth[c] == 0)
+      continue;
+    if (holeComponent[c] > 0)
+      regionOf[c] = holePointTet(holeComponent[c] - 1);
+    else if (options.enclosedShellsAreHoles && depth[c] >= 2 && depth[c] % 2 == 0)
+      regionOf[c] = kEnclosedHoleTet;
+    else
       regionOf[c] = result.regionCount++;
   }
-  result.tetRegion.assign(capacity, -1);
+  result.tetRegion.assign(capacity, kExteriorTet);
   for (TetId t = 0; t < capacity; ++t)
   {
     if (component[t] >= 0)

@@ -25,9 +25,19 @@ struct RegionOptions
   std::vector<double> holePoints;
 };
 
+constexpr std::int32_t kExteriorTet = -1;
+constexpr std::int32_t kEnclosedHoleTet = -2;
+constexpr std::int32_t holePointTet(std::int32_t k)
+{
+  return -3 - k;
+}
+
 struct RegionResult
 {
-  std::vector<std::int32_t> tetRegion; // per tet slot: region id, or -1 (exterior, hole, free)
+  // Per tet slot: the region id (>= 0), or why the tet is not kept: kExteriorTet (the
+  // exterior, or a free slot), kEnclosedHoleTet (an enclosed shell made a hole), or
+  // holePointTet(k) (the region of hole point k).
+  std::vector<std::int32_t> tetRegion;
   int regionCount = 0;
   std::string error; // a hole point outside the surface or on it; tetRegion is then empty
 };
