@@ -193,32 +193,20 @@ std::vector<Polygon> FacetWithoutHoles(const std::vector<double>& points,
     return {};
   }
   // The outer polygon: the one of largest area (Newell normal), whose normal picks the plane.
-  auto normalOf = [&](const Polygon& polygon)
-  {
-    std::array<double, 3> n{ 0, 0, 0 };
-    for (std::size_t k = 0; k < polygon.size(); ++k)
-    {
-      const double* a = &points[3 * static_cast<std::size_t>(polygon[k])];
-      const double* b = &points[3 * static_cast<std::size_t>(polygon[(k + 1) % polygon.size()])];
-      for (int c = 0; c < 3; ++c)
-        n[c] += (a[(c + 1) % 3] - b[(c + 1) % 3]) * (a[(c + 2) % 3] + b[(c + 2) % 3]);
-    }
-    return n;
-  };
   std::size_t outerIndex = 0;
   double largest = -1;
   int drop = 2;
   for (std::size_t p = 0; p < polygons.size(); ++p)
   {
-    const auto n = normalOf(polygons[p]);
+    const PolygonNormal newell = polygonNormal(
+      points.data(), polygons[p].data(), static_cast<std::int64_t>(polygons[p].size()));
+    const double* n = newell.normal;
     const double area = std::hypot(n[0], n[1], n[2]);
     if (area > largest)
     {
       largest = area;
       outerIndex = p;
-      drop = std::fabs(n[0]) >= std::fabs(n[1]) && std::fabs(n[0]) >= std::fabs(n[2]) ? 0
-        : std::fabs(n[1]) >= std::fabs(n[2])                                          ? 1
-                                                                                      : 2;
+      drop = newell.dominantAxis;
     }
   }
   const Plane plane{ points, drop, (drop + 1) % 3, (drop + 2) % 3 };

@@ -35,6 +35,24 @@ bool samePoint(const double* a, const double* b)
 }
 } // namespace
 
+PolygonNormal polygonNormal(const double* points, const std::int64_t* ids, std::int64_t n)
+{
+  PolygonNormal result;
+  double* normal = result.normal;
+  for (std::int64_t i = 0; i < n; ++i)
+  {
+    const double* a = points + 3 * ids[i];
+    const double* b = points + 3 * ids[(i + 1) % n];
+    normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
+    normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
+    normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
+  }
+  for (int k = 1; k < 3; ++k)
+    if (std::fabs(normal[k]) > std::fabs(normal[result.dominantAxis]))
+      result.dominantAxis = k;
+  return result;
+}
+
 void triangulatePolygon(const double* points,
   std::int64_t pointCount,
   const std::int64_t* ids,
@@ -67,19 +85,9 @@ void triangulatePolygon(const double* points,
     fan();
     return;
   }
-  double normal[3] = { 0, 0, 0 };
-  for (int i = 0; i < count; ++i)
-  {
-    const double* a = corner(i);
-    const double* b = corner((i + 1) % count);
-    normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
-    normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
-    normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
-  }
-  int drop = 0;
-  for (int k = 1; k < 3; ++k)
-    if (std::fabs(normal[k]) > std::fabs(normal[drop]))
-      drop = k;
+  const PolygonNormal newell = polygonNormal(points, ids, n);
+  const double* normal = newell.normal;
+  const int drop = newell.dominantAxis;
   if (!(std::fabs(normal[drop]) > 0) || !std::isfinite(normal[drop]))
   {
     fan();

@@ -27,6 +27,16 @@ namespace tetmesher
 constexpr std::int64_t kMaxEarClippedCorners = 1024;
 constexpr std::int64_t kEarClippingWork = 32;
 
+// The Newell normal of the polygon of n corners points[3 * ids[i] ..] (twice its vector area),
+// and the axis of its largest component (the first of equals): the plane that drops that axis
+// is the one both the ear clipper and a facet's holes (Apps/FacetHoles) work in.
+struct PolygonNormal
+{
+  double normal[3] = { 0, 0, 0 };
+  int dominantAxis = 0;
+};
+PolygonNormal polygonNormal(const double* points, const std::int64_t* ids, std::int64_t n);
+
 void triangulatePolygon(const double* points,
   std::int64_t pointCount,
   const std::int64_t* ids,
