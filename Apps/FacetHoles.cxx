@@ -107,6 +107,35 @@ struct Plane
   }
 };
 
+// The polygon of largest area (Newell normal): the outer one of a facet whose polygons nest.
+std::size_t LargestPolygon(const std::vector<double>& points, const std::vector<Polygon>& polygons)
+{
+  std::size_t largestIndex = 0;
+  double largest = -1;
+  for (std::size_t p = 0; p < polygons.size(); ++p)
+  {
+    const double* n = polygonNormal(
+      points.data(), polygons[p].data(), static_cast<std::int64_t>(polygons[p].size()))
+                        .normal;
+    const double area = std::hypot(n[0], n[1], n[2]);
+    if (area > largest)
+    {
+      largest = area;
+      largestIndex = p;
+    }
+  }
+  return largestIndex;
+}
+
+// The plane that drops the largest component of the polygon's normal (as the ear clipper's).
+Plane PlaneOf(const std::vector<double>& points, const Polygon& polygon)
+{
+  const int drop =
+    polygonNormal(points.data(), polygon.data(), static_cast<std::int64_t>(polygon.size()))
+      .dominantAxis;
+  return Plane{ points, drop, (drop + 1) % 3, (drop + 2) % 3 };
+}
+
 // Joins `hole` (clockwise) to `outer` (counter-clockwise) by a slit from the hole's corner of
 // largest i to the nearest outer corner it sees, checked exactly against every edge of the
 // outer polygon and of the holes still apart. False when none is found.
@@ -164,6 +193,44 @@ bool JoinHole(const Plane& plane,
 
 } // namespace
 
+bool PolygonsNested(const std::vector<double>& points, const std::vector<Polygon>& polygons)
+{
+  if (polygons.size() < 2)
+    return false;
+  const Plane plane = PlaneOf(points, polygons[LargestPolygon(points, polygons)]);
+  // Each polygon's box in the plane: a corner outside a polygon's box is not inside it (a
+  // facet may hold thousands of polygons side by side).
+  std::vector<std::array<double, 4>> boxes;
+  for (const Polygon& polygon : polygons)
+  {
+    std::array<double, 4> box{ INFINITY, INFINITY, -INFINITY, -INFINITY };
+    for (std::int64_t id : polygon)
+    {
+      const double* x = plane.at(id);
+      box = { std::min(box[0], x[plane.i]),
+        std::min(box[1], x[plane.j]),
+        std::max(box[2], x[plane.i]),
+        std::max(box[3], x[plane.j]) };
+    }
+    boxes.push_back(box);
+  }
+  for (std::size_t p = 0; p < polygons.size(); ++p)
+    for (std::size_t q = 0; q < polygons.size(); ++q)
+    {
+      if (p == q)
+        continue;
+      const auto& box = boxes[q];
+      for (std::int64_t id : polygons[p])
+      {
+        const double* x = plane.at(id);
+        if (box[0] < x[plane.i] && x[plane.i] < box[2] && box[1] < x[plane.j] &&
+          x[plane.j] < box[3] && plane.locate(x, polygons[q]) > 0)
+          return true;
+      }
+    }
+  return false;
+}
+
 std::vector<Polygon> FacetWithoutHoles(const std::vector<double>& points,
   const std::vector<Polygon>& polygons,
   const std::vector<std::array<double, 3>>& holes,
@@ -192,24 +259,8 @@ std::vector<Polygon> FacetWithoutHoles(const std::vector<double>& points,
       " corners once its polygons are joined (the ear clipper's bound)";
     return {};
   }
-  // The outer polygon: the one of largest area (Newell normal), whose normal picks the plane.
-  std::size_t outerIndex = 0;
-  double largest = -1;
-  int drop = 2;
-  for (std::size_t p = 0; p < polygons.size(); ++p)
-  {
-    const PolygonNormal newell = polygonNormal(
-      points.data(), polygons[p].data(), static_cast<std::int64_t>(polygons[p].size()));
-    const double* n = newell.normal;
-    const double area = std::hypot(n[0], n[1], n[2]);
-    if (area > largest)
-    {
-      largest = area;
-      outerIndex = p;
-      drop = newell.dominantAxis;
-    }
-  }
-  const Plane plane{ points, drop, (drop + 1) % 3, (drop + 2) % 3 };
+  const std::size_t outerIndex = LargestPolygon(points, polygons);
+  const Plane plane = PlaneOf(points, polygons[outerIndex]);
   const Polygon& outer = polygons[outerIndex];
   const int outerTurn = plane.orientation(outer);
   if (outerTurn == 0)
@@ -227,7 +278,8 @@ std::vector<Polygon> FacetWithoutHoles(const std::vector<double>& points,
       if (plane.locate(plane.at(id), outer) <= 0)
       {
         error = "polygon " + std::to_string(p + 1) + " is not inside polygon " +
-          std::to_string(outerIndex + 1) + " (a facet with holes is one polygon around others)";
+          std::to_string(outerIndex + 1) +
+          " (a facet with holes or nested polygons is one polygon around others)";
         return {};
       }
     if (plane.orientation(polygons[p]) == 0)

@@ -89,8 +89,8 @@ void ReadCorners(TokenFile& file,
   out.polygonOffsets.push_back(static_cast<std::int64_t>(out.polygonPoints.size()));
 }
 
-// A .poly facet's hole points ("number x y z" per line, `holes` of them) and what they leave of
-// its polygons (`polygons`, read apart), added to `surface`.
+// A .poly facet's hole points ("number x y z" per line, `holes` of them, maybe none) and what
+// they leave of its polygons (`polygons`, read apart), added to `surface`.
 void AddFacetWithoutHoles(TokenFile& file,
   std::istringstream& line,
   long holes,
@@ -115,9 +115,10 @@ void AddFacetWithoutHoles(TokenFile& file,
     parts.emplace_back(polygons.polygonPoints.begin() + polygons.polygonOffsets[p],
       polygons.polygonPoints.begin() + polygons.polygonOffsets[p + 1]);
   std::string error;
-  const auto kept = FacetWithoutHoles(surface.points, parts, points, error);
+  const bool cut = holes > 0 || PolygonsNested(surface.points, parts);
+  const auto kept = cut ? FacetWithoutHoles(surface.points, parts, points, error) : parts;
   if (!error.empty())
-    file.Fail(facet + " with holes: " + error);
+    file.Fail(facet + (holes > 0 ? " with holes: " : " with polygons inside a polygon: ") + error);
   for (const auto& polygon : kept)
   {
     surface.polygonPoints.insert(surface.polygonPoints.end(), polygon.begin(), polygon.end());
@@ -220,11 +221,13 @@ SurfaceData ReadTetGenSurface(const std::string& path, std::string& notes)
       line >> holes;
       if (holes < 0)
         file.Fail(facet + ": negative hole count " + std::to_string(holes));
-      // Without holes the polygons go straight to the surface; with holes they are read
-      // apart, then what the hole points leave of them is added (FacetHoles.h).
+      // One polygon goes straight to the surface; several are read apart, then what the hole
+      // points leave of them is added (FacetHoles.h), or, without holes, polygons inside a
+      // polygon as the part around them and themselves (TetGen keeps inner polygons as
+      // constraints within the facet), and polygons side by side as they are.
       SurfaceData facetPolygons;
       facetPolygons.polygonOffsets.push_back(0);
-      SurfaceData& into = holes > 0 ? facetPolygons : surface;
+      SurfaceData& into = holes > 0 || polygons > 1 ? facetPolygons : surface;
       for (long p = 0; p < polygons; ++p)
       {
         long corners;
@@ -238,7 +241,7 @@ SurfaceData ReadTetGenSurface(const std::string& path, std::string& notes)
             "facet as polygons of 3 or more corners)");
         ReadCorners(file, line, corners, first, surface, into, facet);
       }
-      if (holes > 0)
+      if (holes > 0 || polygons > 1)
         AddFacetWithoutHoles(file, line, holes, facetPolygons, surface, facet);
     }
   }

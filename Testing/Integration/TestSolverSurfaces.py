@@ -183,6 +183,29 @@ def frame_poly(bottom_hole=(1.5, 1.5), nested=False, patches=()):
     return rows + ["0", "0"]
 
 
+def imprint_poly(depth=1, side_by_side=False):
+    """A 3x3x1 box as TetGen's .poly, no hole points: its top facet is a square around `depth`
+    nested squares (constraints inside the facet, which stays whole), or with `side_by_side`
+    two rectangles side by side (the sides at y = 0 and 3 then have a fifth corner on their
+    top edge). Volume 9."""
+    squares = [(0, 3), (1, 2), (1.25, 1.75)][:1 + (0 if side_by_side else depth)]
+    xy = [(0, 0), (3, 0), (3, 3), (0, 3)] + [(x, y) for a, b in squares[1:] for x, y in
+                                             [(a, a), (b, a), (b, b), (a, b)]]
+    xy += [(1.5, 0), (1.5, 3)] if side_by_side else []
+    rows = ["%d 3 0 0" % (4 + len(xy))] + ["%d %r %r 0" % (k, float(x), float(y)) for k, (x, y) in enumerate(xy[:4])]
+    rows += ["%d %r %r 1" % (4 + k, float(x), float(y)) for k, (x, y) in enumerate(xy)]
+    if side_by_side:
+        m0, m3 = 4 + len(xy) - 2, 4 + len(xy) - 1
+        top = ["2 0", "4 4 %d %d 7" % (m0, m3), "4 %d 5 6 %d" % (m0, m3)]
+        sides = ["5 0 1 5 %d 4" % m0, "4 1 2 6 5", "5 2 3 7 %d 6" % m3, "4 3 0 4 7"]
+    else:
+        top = ["%d 0" % len(squares), "4 4 5 6 7"]
+        top += ["4 %d %d %d %d" % tuple(8 + 4 * k + c for c in range(4)) for k in range(depth)]
+        sides = ["4 %d %d %d %d" % (a, b, b + 4, a + 4) for a, b in ((0, 1), (1, 2), (2, 3), (3, 0))]
+    rows += ["6 0", "1", "4 0 3 2 1"] + top + [r for side in sides for r in ("1", side)]
+    return rows + ["0", "0"]
+
+
 def msh_volume(path):
     """Six times the summed volume of a .msh's tets, exactly (fractions of the coordinates)."""
     from fractions import Fraction
@@ -363,6 +386,21 @@ try:
               "frame.poly %s, %d patches: 6 x volume %s, %d boundary triangles, %s"
               % (path_flag, len(patches), volume, len(boundary), text))
 
+    # A facet without hole points whose polygons nest keeps its inner polygons as constraints
+    # within it: the part around them (8 triangles) and the inner square (2), 20 in all; one
+    # of polygons side by side keeps them as they are: 16 (the two 5-corner sides 3 each).
+    imprint = os.path.join(work, "imprint.poly")
+    for side_by_side, triangles in ((False, 20), (True, 16)):
+        write(imprint, imprint_poly(side_by_side=side_by_side))
+        got, text = mesh_bytes(imprint, os.path.join(work, "imprint.msh"), ["--boundary-only"])
+        if got is None:
+            continue
+        _, boundary = msh_mesh(os.path.join(work, "imprint.msh"))
+        volume = msh_volume(os.path.join(work, "imprint.msh"))
+        check(volume == 6 * 9 and len(boundary) == triangles and "warning" not in text,
+              "imprint.poly side by side %s: 6 x volume %s, %d boundary triangles, %s"
+              % (side_by_side, volume, len(boundary), text))
+
     # TetGen's own example.poly (Debian's tetgen package; facet 3 has a hole): without its
     # volume hole list (whose first point empties a box that touches the outside, which this
     # mesher refuses), it meshes (the boundary kept exactly, or the run fails), in 4 regions.
@@ -415,6 +453,8 @@ try:
                          "facet 0 with holes: more than 1024 corners once its polygons are joined"),
         "nested.poly": (frame_poly((1.5, 1.5), nested=True),
                         "facet 0 with holes: polygon 3 lies inside polygon 2 (polygons nested two deep"),
+        "imprint.poly": (imprint_poly(depth=2), "facet 1 with polygons inside a polygon: polygon 3 lies "
+                         "inside polygon 2 (polygons nested two deep are not supported)"),
         "missing.face": (["4 0"] + ["%d %s" % (i, f[2:]) for i, f in enumerate(faces)],
                          "missing.node: no such file"),
         "binary.msh": (["$MeshFormat", "4.1 1 8", "$EndMeshFormat"], "binary .msh files"),
