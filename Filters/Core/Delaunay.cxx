@@ -1457,6 +1457,7 @@ DelaunayResult buildDelaunay(TetMesh& mesh,
   // time across the first split, for the points near it), and what is left in order.
   std::unique_ptr<Halves> halves;
   std::vector<VertexId> pending;
+  auto skipped = [&](std::size_t i) { return options.skip && options.skip[originalId[i]]; };
   for (std::size_t r = 0; r < roundStarts.size(); ++r)
   {
     const std::size_t begin = roundStarts[r];
@@ -1467,13 +1468,15 @@ DelaunayResult buildDelaunay(TetMesh& mesh,
       if (!halves)
         halves = std::make_unique<Halves>();
       for (std::size_t i = begin; i < end; ++i)
-        pending.push_back(static_cast<VertexId>(i));
+        if (!skipped(i))
+          pending.push_back(static_cast<VertexId>(i));
       for (int phase = 0; phase < 2 && pending.size() >= kMinHalvesPoints; ++phase)
         insertInHalves(mesh, pending, hint, ws, *halves, duplicates, twoThreads);
     }
     else
       for (std::size_t i = begin; i < end; ++i)
-        pending.push_back(static_cast<VertexId>(i));
+        if (!skipped(i))
+          pending.push_back(static_cast<VertexId>(i));
     for (VertexId v : pending)
       if (!insertInOrder(v))
       {
@@ -1506,7 +1509,11 @@ DelaunayResult buildDelaunay(TetMesh& mesh,
 
   if (options.validate)
   {
-    const std::string msg = validateDelaunayMesh(mesh, n + 8, result.duplicates);
+    std::vector<VertexId> absent = result.duplicates;
+    for (VertexId v = 0; options.skip && v < n; ++v)
+      if (options.skip[v])
+        absent.push_back(v);
+    const std::string msg = validateDelaunayMesh(mesh, n + 8, absent);
     if (!msg.empty())
     {
       result.error = "Delaunay validation failed: " + msg;

@@ -32,6 +32,9 @@ struct DelaunayOptions
   // were perturbationRank[v] (a permutation of 0..n-1; nullptr: its id). Only exact ties
   // depend on it (PerturbationOrder.h); the mesh is then Delaunay for that order.
   const VertexId* perturbationRank = nullptr;
+  // Points not to insert (skip[v] != 0; nullptr: none): they stay vertices that no tet uses
+  // (unused input points on the surface, UnusedPoints.h).
+  const std::uint8_t* skip = nullptr;
 };
 
 struct DelaunayResult

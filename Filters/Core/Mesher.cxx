@@ -11,6 +11,7 @@
 #include "SurfaceInput.h"
 #include "TetMesh.h"
 #include "TriangleIndex.h"
+#include "UnusedPoints.h"
 
 #include <algorithm>
 #include <chrono>
@@ -130,6 +131,15 @@ MesherResult meshSurface(const double* points,
   const PerturbationOrder order = perturbationOrderForSurface(points, surface);
   DelaunayOptions delaunayOptions;
   delaunayOptions.perturbationRank = order.rank.empty() ? nullptr : order.rank.data();
+  // Points on the surface that no triangle uses stay out of the mesh (UnusedPoints.h).
+  std::vector<std::uint8_t> skip;
+  for (const UnusedPointOnSurface& u :
+    unusedPointsOnSurface(points, pointCount, triangles, triangleCount))
+  {
+    skip.resize(static_cast<std::size_t>(pointCount), 0);
+    skip[static_cast<std::size_t>(u.point)] = 1;
+  }
+  delaunayOptions.skip = skip.empty() ? nullptr : skip.data();
   DelaunayResult delaunay = buildDelaunay(mesh, points, pointCount, delaunayOptions);
   if (options.inputCheck)
   {

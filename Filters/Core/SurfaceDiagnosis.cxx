@@ -3,6 +3,7 @@
 #include "Predicates.h"
 #include "RadixSort.h"
 #include "TriangleIntersection.h"
+#include "UnusedPoints.h"
 
 #include <algorithm>
 #include <array>
@@ -20,7 +21,7 @@ using predicates::orient3d;
 namespace
 {
 
-constexpr int kKindCount = static_cast<int>(SurfaceDefect::OutlyingPoint) + 1;
+constexpr int kKindCount = static_cast<int>(SurfaceDefect::UnusedPointOnSurface) + 1;
 
 // Order in which kinds are listed (records and summary).
 constexpr SurfaceDefect kReportOrder[kKindCount] = { SurfaceDefect::Empty,
@@ -35,7 +36,8 @@ constexpr SurfaceDefect kReportOrder[kKindCount] = { SurfaceDefect::Empty,
   SurfaceDefect::NonManifoldEdge,
   SurfaceDefect::InconsistentOrientation,
   SurfaceDefect::SelfIntersection,
-  SurfaceDefect::UnusedPoint };
+  SurfaceDefect::UnusedPoint,
+  SurfaceDefect::UnusedPointOnSurface };
 
 // Per-triangle state bits.
 enum : std::uint8_t
@@ -655,10 +657,16 @@ private:
       for (int k = 0; k < 3; ++k)
         used[tri(t)[k]] = true;
     }
+    std::vector<char> onSurface(static_cast<std::size_t>(PointCount), 0);
+    for (const UnusedPointOnSurface& u : unusedPointsOnSurface(Points, PointCount, Tris, TriCount))
+      onSurface[static_cast<std::size_t>(u.point)] = 1;
     for (std::int32_t i = 0; i < PointCount; ++i)
     {
       if (!used[i])
-        add(SurfaceDefect::UnusedPoint, { i }, {});
+        add(onSurface[static_cast<std::size_t>(i)] ? SurfaceDefect::UnusedPointOnSurface
+                                                   : SurfaceDefect::UnusedPoint,
+          { i },
+          {});
     }
   }
 
@@ -705,6 +713,9 @@ const char* defectLabel(SurfaceDefect kind, bool plural)
       return plural ? "intersecting triangle pairs" : "intersecting triangle pair";
     case SurfaceDefect::UnusedPoint:
       return plural ? "unused points" : "unused point";
+    case SurfaceDefect::UnusedPointOnSurface:
+      return plural ? "unused points on the surface, left out of the mesh"
+                    : "unused point on the surface, left out of the mesh";
     case SurfaceDefect::Empty:
       return "empty surface (no points or no triangles)";
     case SurfaceDefect::InvalidPointId:
@@ -726,7 +737,8 @@ const char* defectLabel(SurfaceDefect kind, bool plural)
 
 bool isWarning(SurfaceDefect kind)
 {
-  return kind == SurfaceDefect::UnusedPoint || kind == SurfaceDefect::InconsistentOrientation;
+  return kind == SurfaceDefect::UnusedPoint || kind == SurfaceDefect::UnusedPointOnSurface ||
+    kind == SurfaceDefect::InconsistentOrientation;
 }
 
 SurfaceDiagnosis SurfaceDiagnosis::errors() const

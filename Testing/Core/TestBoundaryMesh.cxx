@@ -180,6 +180,42 @@ TEST(BoundaryMesh, HolePointsOnOrOutsideTheSurfaceAreNamed)
   }
 }
 
+// Points that no triangle uses. On the surface (in a triangle, on an edge between two, on an
+// edge of the cube) they are left out of the mesh: inserted, they would make the triangles
+// there unrecoverable. Inside they are inserted (as TetGen does); outside they go with the
+// exterior. The diagnosis names the first kind apart, as a warning.
+TEST(BoundaryMesh, UnusedPointsOnTheSurfaceAreLeftOut)
+{
+  Surface s = cube(2);
+  const std::int32_t firstOnSurface = s.pointCount();
+  s.addPoint(0.2, 0.3, 0);
+  s.addPoint(0.5, 0.25, 0);
+  s.addPoint(0.25, 0, 0);
+  s.addPoint(1, 0.7, 0.6);
+  const std::int32_t inside = s.addPoint(0.4, 0.45, 0.55);
+  const std::int32_t outside = s.addPoint(2, 2, 2);
+  MesherOptions unchecked;
+  unchecked.validateInput = false;
+  for (const MesherOptions& options : { MesherOptions{}, unchecked })
+  {
+    const MesherResult r = meshAndCheck(s, allOutward(s), 1, options);
+    ASSERT_TRUE(r.ok) << r.error;
+    std::vector<char> used(static_cast<std::size_t>(s.pointCount()), 0);
+    for (std::int32_t v : r.tets)
+      if (v < s.pointCount())
+        used[static_cast<std::size_t>(v)] = 1;
+    for (std::int32_t v = firstOnSurface; v < inside; ++v)
+      EXPECT_FALSE(used[static_cast<std::size_t>(v)]) << "point " << v;
+    EXPECT_TRUE(used[static_cast<std::size_t>(inside)]);
+    EXPECT_FALSE(used[static_cast<std::size_t>(outside)]);
+  }
+  const SurfaceDiagnosis d =
+    diagnoseSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount());
+  EXPECT_TRUE(d.ok()) << d.summary();
+  EXPECT_EQ(d.count(SurfaceDefect::UnusedPointOnSurface), 4) << d.summary();
+  EXPECT_EQ(d.count(SurfaceDefect::UnusedPoint), 2) << d.summary();
+}
+
 TEST(BoundaryMesh, ThinSlab)
 {
   Surface s = box({ 0, 0, 0 }, { 1, 1, 0.02 }, { 8, 8, 1 });

@@ -3,6 +3,7 @@
 // timing on a large sphere.
 #include "SurfaceDiagnosis.h"
 #include "TriangleIntersection.h"
+#include "UnusedPoints.h"
 
 #include <gtest/gtest.h>
 
@@ -600,6 +601,38 @@ TEST(SurfaceDiagnosis, UnusedPointIsOnlyAWarning)
   ASSERT_EQ(d.defects.size(), 1u) << d.summary();
   expectRecord(d.defects[0], SurfaceDefect::UnusedPoint, { 8 }, {});
   EXPECT_TRUE(d.ok());
+}
+
+// Unused points on the surface (exactly in a triangle or on an edge) are named apart, with the
+// lowest triangle that holds them; those inside, beside the surface in its plane, a hair off
+// it, or equal to a corner (a duplicate) are not.
+TEST(SurfaceDiagnosis, UnusedPointsOnTheSurfaceAreNamedApart)
+{
+  Surface s = cube();
+  s.addPoint(0.25, 0.75, 0);    // 8: in triangle 8
+  s.addPoint(0.5, 0.5, 0);      // 9: on the diagonal of triangles 8 and 9
+  s.addPoint(0.5, 0, 0);        // 10: on the cube's edge of triangles 4 and 9
+  s.addPoint(0.5, 0.5, 0.5);    // 11: inside
+  s.addPoint(2, 0.5, 0);        // 12: in the plane z = 0, beside the face
+  s.addPoint(0.5, 0.5, 1e-300); // 13: off the face
+  s.addPoint(1, 1, 0);          // 14: equal to point 3
+  const std::vector<UnusedPointOnSurface> found =
+    unusedPointsOnSurface(s.pts.data(), s.pointCount(), s.tris.data(), s.triCount());
+  ASSERT_EQ(found.size(), 3u);
+  EXPECT_EQ(found[0].point, 8);
+  EXPECT_EQ(found[0].triangle, 8);
+  EXPECT_EQ(found[1].point, 9);
+  EXPECT_EQ(found[1].triangle, 8);
+  EXPECT_EQ(found[2].point, 10);
+  EXPECT_EQ(found[2].triangle, 4);
+  const SurfaceDiagnosis d = s.diagnose();
+  EXPECT_EQ(d.count(SurfaceDefect::UnusedPointOnSurface), 3) << d.summary();
+  EXPECT_EQ(d.count(SurfaceDefect::UnusedPoint), 4) << d.summary();
+  EXPECT_EQ(d.count(SurfaceDefect::DuplicatePoint), 1) << d.summary();
+  // A triangle with an id out of range holds nothing (the diagnosis names it).
+  s.addTri(0, 1, 99);
+  EXPECT_EQ(
+    unusedPointsOnSurface(s.pts.data(), s.pointCount(), s.tris.data(), s.triCount()).size(), 3u);
 }
 
 TEST(SurfaceDiagnosis, UnmergedPointsGiveOpenEdgesNotIntersections)

@@ -84,6 +84,32 @@ TEST(VolumeMesher, CubeWithConstantSizeKeepsTheBoundaryAndFollowsH)
   EXPECT_EQ(plainBefore, expected);
 }
 
+// The whole pipeline on a surface with unused points on it (left out of the mesh) and inside
+// it (a vertex of the mesh): the boundary exact, the points on the surface in no tet.
+TEST(VolumeMesher, UnusedPointsOnTheSurfaceStayOutOfTheMesh)
+{
+  Surface s = cube(3);
+  const std::int32_t firstOnSurface = s.pointCount();
+  s.addPoint(0.1, 0.2, 1);
+  s.addPoint(0, 0.5, 0.5);
+  s.addPoint(1.0 / 3, 0, 0.2);
+  const std::int32_t inside = s.addPoint(0.5, 0.5, 0.5);
+  VolumeMeshOptions options;
+  options.inputSizes.assign(static_cast<std::size_t>(s.pointCount()), 0.2);
+  const VolumeMeshResult v =
+    meshVolume(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), options);
+  ASSERT_TRUE(v.ok) << v.error;
+  std::vector<int> sign(static_cast<std::size_t>(s.triangleCount()), 1);
+  EXPECT_EQ(checkMesh(s, asMesherResult(v, s.pointCount()), sign, 1), "");
+  std::vector<char> used(v.points.size() / 3, 0);
+  for (std::int32_t id : v.tets)
+    used[static_cast<std::size_t>(id)] = 1;
+  for (std::int32_t id = firstOnSurface; id < inside; ++id)
+    EXPECT_FALSE(used[static_cast<std::size_t>(id)]) << "point " << id;
+  EXPECT_TRUE(used[static_cast<std::size_t>(inside)]);
+  EXPECT_GT(v.interiorPoints, 0);
+}
+
 // Issue 8's targets on good surface triangles, with the default options: Q min >= 0.3, share
 // of Q < 0.3 under 0.1%, min dihedral >= 20 degrees; at h matching the surface, at h/2, much
 // finer than the surface (the size floor's regime: cube(7) at h = 1/35, edges 5 h) and much
