@@ -131,10 +131,9 @@ MesherResult meshSurface(const double* points,
   const PerturbationOrder order = perturbationOrderForSurface(points, surface);
   DelaunayOptions delaunayOptions;
   delaunayOptions.perturbationRank = order.rank.empty() ? nullptr : order.rank.data();
-  // Points on the surface that no triangle uses stay out of the mesh (UnusedPoints.h).
+  // Unused points on the surface or equal to another stay out of the mesh (UnusedPoints.h).
   std::vector<std::uint8_t> skip;
-  for (const UnusedPointOnSurface& u :
-    unusedPointsOnSurface(points, pointCount, triangles, triangleCount))
+  for (const LeftOutPoint& u : unusedPointsLeftOut(points, pointCount, triangles, triangleCount))
   {
     skip.resize(static_cast<std::size_t>(pointCount), 0);
     skip[static_cast<std::size_t>(u.point)] = 1;

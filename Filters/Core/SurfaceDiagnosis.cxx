@@ -21,7 +21,7 @@ using predicates::orient3d;
 namespace
 {
 
-constexpr int kKindCount = static_cast<int>(SurfaceDefect::UnusedPointOnSurface) + 1;
+constexpr int kKindCount = static_cast<int>(SurfaceDefect::UnusedPointLeftOut) + 1;
 
 // Order in which kinds are listed (records and summary).
 constexpr SurfaceDefect kReportOrder[kKindCount] = { SurfaceDefect::Empty,
@@ -37,7 +37,7 @@ constexpr SurfaceDefect kReportOrder[kKindCount] = { SurfaceDefect::Empty,
   SurfaceDefect::InconsistentOrientation,
   SurfaceDefect::SelfIntersection,
   SurfaceDefect::UnusedPoint,
-  SurfaceDefect::UnusedPointOnSurface };
+  SurfaceDefect::UnusedPointLeftOut };
 
 // Per-triangle state bits.
 enum : std::uint8_t
@@ -201,6 +201,9 @@ private:
       else
         order.push_back(i);
     }
+    LeftOut.assign(static_cast<std::size_t>(PointCount), 0);
+    for (const LeftOutPoint& p : unusedPointsLeftOut(Points, PointCount, Tris, TriCount))
+      LeftOut[static_cast<std::size_t>(p.point)] = 1;
     // Exactly equal coordinates (-0 == +0). Canonical id: the smallest id of the group.
     Canonical.resize(static_cast<std::size_t>(PointCount));
     std::iota(Canonical.begin(), Canonical.end(), 0);
@@ -229,7 +232,12 @@ private:
       std::size_t j = i + 1;
       while (j < order.size() && equal(order[i], order[j]))
         ++j;
-      if (j - i > 1)
+      // Unused points that the mesh leaves out do not count (one point and its unused
+      // copies are no defect).
+      const auto kept = std::count_if(order.begin() + i,
+        order.begin() + j,
+        [&](std::int32_t id) { return !LeftOut[static_cast<std::size_t>(id)]; });
+      if (kept > 1)
       {
         std::vector<std::int32_t> group(order.begin() + i, order.begin() + j);
         for (std::int32_t id : group)
@@ -657,14 +665,11 @@ private:
       for (int k = 0; k < 3; ++k)
         used[tri(t)[k]] = true;
     }
-    std::vector<char> onSurface(static_cast<std::size_t>(PointCount), 0);
-    for (const UnusedPointOnSurface& u : unusedPointsOnSurface(Points, PointCount, Tris, TriCount))
-      onSurface[static_cast<std::size_t>(u.point)] = 1;
     for (std::int32_t i = 0; i < PointCount; ++i)
     {
       if (!used[i])
-        add(onSurface[static_cast<std::size_t>(i)] ? SurfaceDefect::UnusedPointOnSurface
-                                                   : SurfaceDefect::UnusedPoint,
+        add(LeftOut[static_cast<std::size_t>(i)] ? SurfaceDefect::UnusedPointLeftOut
+                                                 : SurfaceDefect::UnusedPoint,
           { i },
           {});
     }
@@ -676,6 +681,7 @@ private:
   std::int32_t TriCount;
   DiagnosisOptions Options;
   std::vector<std::uint8_t> State;
+  std::vector<char> LeftOut; // unused points the mesh leaves out (UnusedPoints.h)
   std::vector<bool> Finite;
   std::vector<std::int32_t> Canonical;
   std::vector<DefectRecord> Records[kKindCount];
@@ -713,9 +719,11 @@ const char* defectLabel(SurfaceDefect kind, bool plural)
       return plural ? "intersecting triangle pairs" : "intersecting triangle pair";
     case SurfaceDefect::UnusedPoint:
       return plural ? "unused points" : "unused point";
-    case SurfaceDefect::UnusedPointOnSurface:
-      return plural ? "unused points on the surface, left out of the mesh"
-                    : "unused point on the surface, left out of the mesh";
+    case SurfaceDefect::UnusedPointLeftOut:
+      return plural ? "unused points left out of the mesh (on the surface, or equal to another "
+                      "point)"
+                    : "unused point left out of the mesh (on the surface, or equal to another "
+                      "point)";
     case SurfaceDefect::Empty:
       return "empty surface (no points or no triangles)";
     case SurfaceDefect::InvalidPointId:
@@ -737,7 +745,7 @@ const char* defectLabel(SurfaceDefect kind, bool plural)
 
 bool isWarning(SurfaceDefect kind)
 {
-  return kind == SurfaceDefect::UnusedPoint || kind == SurfaceDefect::UnusedPointOnSurface ||
+  return kind == SurfaceDefect::UnusedPoint || kind == SurfaceDefect::UnusedPointLeftOut ||
     kind == SurfaceDefect::InconsistentOrientation;
 }
 

@@ -46,8 +46,8 @@ enum class SurfaceDefect
   CoordinateOutOfRange,    // pointIds: {p} (finite, but too large or too small to be exact)
   OutlyingPoint,           // pointIds: {p}, farther from the median point than
                            // kMaxProportion x the shortest edge (a corrupted coordinate)
-  UnusedPointOnSurface,    // pointIds: {p}, used by no triangle but lying on one (a warning:
-                           // left out of the mesh, UnusedPoints.h)
+  UnusedPointLeftOut,      // pointIds: {p}, used by no triangle, on the surface or equal to
+                           // another point (a warning: left out of the mesh, UnusedPoints.h)
 };
 
 // Beyond this ratio of a point's distance from the surface's median point to the shortest

@@ -181,9 +181,10 @@ TEST(BoundaryMesh, HolePointsOnOrOutsideTheSurfaceAreNamed)
 }
 
 // Points that no triangle uses. On the surface (in a triangle, on an edge between two, on an
-// edge of the cube) they are left out of the mesh: inserted, they would make the triangles
-// there unrecoverable. Inside they are inserted (as TetGen does); outside they go with the
-// exterior. The diagnosis names the first kind apart, as a warning.
+// edge of the cube, at a corner) they are left out of the mesh: inserted, they would make the
+// triangles there unrecoverable (or be duplicates). Inside they are inserted (as TetGen does),
+// a copy of one left out; outside they go with the exterior. The diagnosis names the ones left
+// out apart, as a warning.
 TEST(BoundaryMesh, UnusedPointsOnTheSurfaceAreLeftOut)
 {
   Surface s = cube(2);
@@ -192,8 +193,10 @@ TEST(BoundaryMesh, UnusedPointsOnTheSurfaceAreLeftOut)
   s.addPoint(0.5, 0.25, 0);
   s.addPoint(0.25, 0, 0);
   s.addPoint(1, 0.7, 0.6);
+  s.addPoint(1, 1, 1); // a corner's copy
   const std::int32_t inside = s.addPoint(0.4, 0.45, 0.55);
   const std::int32_t outside = s.addPoint(2, 2, 2);
+  s.addPoint(0.4, 0.45, 0.55); // the inside point's copy
   MesherOptions unchecked;
   unchecked.validateInput = false;
   for (const MesherOptions& options : { MesherOptions{}, unchecked })
@@ -208,11 +211,12 @@ TEST(BoundaryMesh, UnusedPointsOnTheSurfaceAreLeftOut)
       EXPECT_FALSE(used[static_cast<std::size_t>(v)]) << "point " << v;
     EXPECT_TRUE(used[static_cast<std::size_t>(inside)]);
     EXPECT_FALSE(used[static_cast<std::size_t>(outside)]);
+    EXPECT_FALSE(used[static_cast<std::size_t>(outside + 1)]);
   }
   const SurfaceDiagnosis d =
     diagnoseSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount());
   EXPECT_TRUE(d.ok()) << d.summary();
-  EXPECT_EQ(d.count(SurfaceDefect::UnusedPointOnSurface), 4) << d.summary();
+  EXPECT_EQ(d.count(SurfaceDefect::UnusedPointLeftOut), 6) << d.summary();
   EXPECT_EQ(d.count(SurfaceDefect::UnusedPoint), 2) << d.summary();
 }
 

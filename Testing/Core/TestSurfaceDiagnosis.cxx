@@ -582,15 +582,15 @@ TEST(SurfaceDiagnosis, PointOutOfAllProportion)
   EXPECT_TRUE(tiny.diagnose().ok()) << tiny.diagnose().summary();
 }
 
-TEST(SurfaceDiagnosis, DuplicatePointUnused)
+TEST(SurfaceDiagnosis, DuplicatePointUnusedIsLeftOut)
 {
+  // An unused copy of a point is no defect: the mesh leaves it out (a warning says so).
   Surface s = cube();
   s.addPoint(1, 1, 0); // same as point 3
   const SurfaceDiagnosis d = s.diagnose();
-  ASSERT_EQ(d.defects.size(), 2u) << d.summary();
-  expectRecord(d.defects[0], SurfaceDefect::DuplicatePoint, { 3, 8 }, {});
-  expectRecord(d.defects[1], SurfaceDefect::UnusedPoint, { 8 }, {});
-  EXPECT_FALSE(d.ok());
+  ASSERT_EQ(d.defects.size(), 1u) << d.summary();
+  expectRecord(d.defects[0], SurfaceDefect::UnusedPointLeftOut, { 8 }, {});
+  EXPECT_TRUE(d.ok());
 }
 
 TEST(SurfaceDiagnosis, UnusedPointIsOnlyAWarning)
@@ -606,33 +606,42 @@ TEST(SurfaceDiagnosis, UnusedPointIsOnlyAWarning)
 // Unused points on the surface (exactly in a triangle or on an edge) are named apart, with the
 // lowest triangle that holds them; those inside, beside the surface in its plane, a hair off
 // it, or equal to a corner (a duplicate) are not.
-TEST(SurfaceDiagnosis, UnusedPointsOnTheSurfaceAreNamedApart)
+// Unused points on the surface (exactly in a triangle, on an edge or at a corner) and copies of
+// an unused point are left out of the mesh, named apart with the lowest triangle that holds
+// them or the point they equal; those inside, beside the surface in its plane or a hair off it
+// are not.
+TEST(SurfaceDiagnosis, UnusedPointsLeftOutAreNamedApart)
 {
   Surface s = cube();
-  s.addPoint(0.25, 0.75, 0);    // 8: in triangle 8
-  s.addPoint(0.5, 0.5, 0);      // 9: on the diagonal of triangles 8 and 9
-  s.addPoint(0.5, 0, 0);        // 10: on the cube's edge of triangles 4 and 9
-  s.addPoint(0.5, 0.5, 0.5);    // 11: inside
-  s.addPoint(2, 0.5, 0);        // 12: in the plane z = 0, beside the face
-  s.addPoint(0.5, 0.5, 1e-300); // 13: off the face
-  s.addPoint(1, 1, 0);          // 14: equal to point 3
-  const std::vector<UnusedPointOnSurface> found =
-    unusedPointsOnSurface(s.pts.data(), s.pointCount(), s.tris.data(), s.triCount());
-  ASSERT_EQ(found.size(), 3u);
-  EXPECT_EQ(found[0].point, 8);
-  EXPECT_EQ(found[0].triangle, 8);
-  EXPECT_EQ(found[1].point, 9);
-  EXPECT_EQ(found[1].triangle, 8);
-  EXPECT_EQ(found[2].point, 10);
-  EXPECT_EQ(found[2].triangle, 4);
+  s.addPoint(0.25, 0.75, 0);   // 8: in triangle 8
+  s.addPoint(0.5, 0.5, 0);     // 9: on the diagonal of triangles 8 and 9
+  s.addPoint(0.5, 0, 0);       // 10: on the cube's edge of triangles 4 and 9
+  s.addPoint(0.5, 0.5, 0.5);   // 11: inside
+  s.addPoint(2, 0.5, 0);       // 12: in the plane z = 0, beside the face
+  s.addPoint(0.5, 0.5, 1e-30); // 13: off the face
+  s.addPoint(1, 1, 0);         // 14: equal to point 3, a corner of triangle 2
+  s.addPoint(0.5, 0.5, 0.5);   // 15: equal to point 11
+  const std::vector<LeftOutPoint> found =
+    unusedPointsLeftOut(s.pts.data(), s.pointCount(), s.tris.data(), s.triCount());
+  const std::vector<std::array<std::int32_t, 3>> expected = {
+    { 8, 8, -1 }, { 9, 8, -1 }, { 10, 4, -1 }, { 14, 2, 3 }, { 15, -1, 11 }
+  };
+  ASSERT_EQ(found.size(), expected.size());
+  for (std::size_t i = 0; i < found.size(); ++i)
+  {
+    EXPECT_EQ(found[i].point, expected[i][0]) << i;
+    EXPECT_EQ(found[i].triangle, expected[i][1]) << i;
+    EXPECT_EQ(found[i].equalTo, expected[i][2]) << i;
+  }
   const SurfaceDiagnosis d = s.diagnose();
-  EXPECT_EQ(d.count(SurfaceDefect::UnusedPointOnSurface), 3) << d.summary();
-  EXPECT_EQ(d.count(SurfaceDefect::UnusedPoint), 4) << d.summary();
-  EXPECT_EQ(d.count(SurfaceDefect::DuplicatePoint), 1) << d.summary();
+  EXPECT_TRUE(d.ok()) << d.summary();
+  EXPECT_EQ(d.count(SurfaceDefect::UnusedPointLeftOut), 5) << d.summary();
+  EXPECT_EQ(d.count(SurfaceDefect::UnusedPoint), 3) << d.summary();
+  EXPECT_EQ(d.count(SurfaceDefect::DuplicatePoint), 0) << d.summary();
   // A triangle with an id out of range holds nothing (the diagnosis names it).
   s.addTri(0, 1, 99);
-  EXPECT_EQ(
-    unusedPointsOnSurface(s.pts.data(), s.pointCount(), s.tris.data(), s.triCount()).size(), 3u);
+  EXPECT_EQ(unusedPointsLeftOut(s.pts.data(), s.pointCount(), s.tris.data(), s.triCount()).size(),
+    expected.size());
 }
 
 TEST(SurfaceDiagnosis, UnmergedPointsGiveOpenEdgesNotIntersections)
