@@ -191,6 +191,7 @@ MesherResult meshSurface(const double* points,
   regionOptions.firstBoxVertex = delaunay.firstBoxVertex;
   regionOptions.enclosedShellsAreHoles = options.enclosedShellsAreHoles;
   regionOptions.holePoints = options.holePoints;
+  regionOptions.regionPoints = options.regionPoints;
   if (options.removeSteinerPoints && !recovery.steinerVertices.empty())
   {
     // Steiner points outside every region go with the exterior tets (stage 3), and removing
@@ -228,6 +229,7 @@ MesherResult meshSurface(const double* points,
     return result;
   }
   result.regionCount = regions.regionCount;
+  result.regionAttribute = regions.regionAttribute;
   if (options.removeFlatTets)
   {
     const auto flatStart = std::chrono::steady_clock::now();

@@ -26,6 +26,9 @@ struct MesherOptions
   // TetGen's hole list (3 doubles per point): the components containing these points are
   // holes, dropped like the exterior. A point outside the surface or on it is the run's error.
   std::vector<double> holePoints;
+  // TetGen's region list (4 doubles per point: x, y, z, attribute; Regions.h): the result's
+  // regionAttribute. A point outside the surface, on it or in a hole is the run's error.
+  std::vector<double> regionPoints;
   // Budget of recovery Steiner points; -1: 100 + 4 per input triangle. An item still missing
   // after 64 Steiner points near it also ends the run (error naming it).
   int maxSteinerPoints = -1;
@@ -64,6 +67,7 @@ struct MesherResult
   std::vector<std::int32_t> boundaryFaceTet; // per input triangle: 4*t+f of an equal tet face
   int steinerPoints = 0;                     // points in the output beyond the input points
   int regionCount = 0;
+  std::vector<double> regionAttribute; // per region, from regionPoints; empty without them
   int flips23 = 0;
   int edgeRemovals = 0;
   int cavityCones = 0;    // missing edges recovered by refilling their cavity (CavityCone.h)

@@ -4,6 +4,8 @@
 #include "Predicates.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -168,6 +170,58 @@ RegionResult classifyRegions(const TetMesh& mesh, const RegionOptions& options)
       regionOf[c] = kEnclosedHoleTet;
     else
       regionOf[c] = result.regionCount++;
+  }
+  // Region points: where each lies, then the attributes.
+  std::vector<double> regionPointXyz;
+  for (std::size_t i = 0; 4 * i + 3 < options.regionPoints.size(); ++i)
+    regionPointXyz.insert(regionPointXyz.end(),
+      options.regionPoints.begin() + static_cast<std::ptrdiff_t>(4 * i),
+      options.regionPoints.begin() + static_cast<std::ptrdiff_t>(4 * i + 3));
+  result.error = predicates::coordinateRangeError(
+    regionPointXyz.data(), static_cast<std::int64_t>(regionPointXyz.size() / 3), "region point");
+  if (!result.error.empty())
+    return result;
+  if (!regionPointXyz.empty())
+  {
+    std::vector<char> given(static_cast<std::size_t>(result.regionCount), 0);
+    result.regionAttribute.assign(static_cast<std::size_t>(result.regionCount), 0.0);
+    double largest = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; 3 * i < regionPointXyz.size(); ++i)
+    {
+      const double* x = &regionPointXyz[3 * i];
+      const double attribute = options.regionPoints[4 * i + 3];
+      const std::int32_t c = componentOfPoint(mesh, component, x, hint);
+      std::ostringstream where;
+      where << "region point " << i << " (" << x[0] << ", " << x[1] << ", " << x[2] << ")";
+      if (!std::isfinite(attribute))
+        result.error = where.str() + " has a non-finite attribute";
+      else if (c == kOnSurface)
+        result.error = where.str() + " lies on the input surface";
+      else if (c < 0 || touchesBox[c])
+        result.error = where.str() + " is outside the input surface";
+      else if (regionOf[c] < 0)
+        result.error = where.str() + " lies in a hole (" +
+          (regionOf[c] == kEnclosedHoleTet
+              ? std::string("an enclosed shell made a hole")
+              : "the region of hole point " + std::to_string(-3 - regionOf[c])) +
+          ")";
+      if (!result.error.empty())
+      {
+        result.regionAttribute.clear();
+        return result;
+      }
+      largest = std::max(largest, attribute);
+      const auto r = static_cast<std::size_t>(regionOf[c]);
+      if (!given[r])
+      {
+        given[r] = 1;
+        result.regionAttribute[r] = attribute;
+      }
+    }
+    double next = largest;
+    for (std::size_t r = 0; r < given.size(); ++r)
+      if (!given[r])
+        result.regionAttribute[r] = ++next;
   }
   result.tetRegion.assign(capacity, kExteriorTet);
   for (TetId t = 0; t < capacity; ++t)

@@ -23,6 +23,11 @@ struct RegionOptions
   // TetGen's hole list: the components containing these points (3 doubles each) are holes.
   // A point outside the surface, or on it (decided exactly), is an error naming it.
   std::vector<double> holePoints;
+  // TetGen's region list (4 doubles per point: x, y, z, attribute): each region takes the
+  // attribute of the first point in it; the others take the largest given attribute + 1, + 2,
+  // ... in region order (as TetGen's -A). A point outside the surface, on it or in a hole is
+  // an error naming it.
+  std::vector<double> regionPoints;
 };
 
 constexpr std::int32_t kExteriorTet = -1;
@@ -39,7 +44,10 @@ struct RegionResult
   // holePointTet(k) (the region of hole point k).
   std::vector<std::int32_t> tetRegion;
   int regionCount = 0;
-  std::string error; // a hole point outside the surface or on it; tetRegion is then empty
+  // Per region, its attribute (RegionOptions::regionPoints); empty without region points.
+  std::vector<double> regionAttribute;
+  std::string error; // a hole or region point outside the surface or on it (or a region point
+                     // in a hole); tetRegion is then empty
 };
 
 RegionResult classifyRegions(const TetMesh& mesh, const RegionOptions& options);

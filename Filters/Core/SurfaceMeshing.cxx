@@ -167,6 +167,7 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
   options.boundary.validateInput = false;
   options.boundary.enclosedShellsAreHoles = settings.enclosedShellsAreHoles;
   options.boundary.holePoints = input.holePoints;
+  options.boundary.regionPoints = input.regionPoints;
   options.boundary.maxSteinerPoints = settings.maximumSteinerPoints;
   options.boundary.removeSteinerPoints = settings.removeSteinerPoints;
   options.refine = settings.refine;

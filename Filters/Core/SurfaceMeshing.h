@@ -56,6 +56,9 @@ struct SurfaceMeshInput
   double triangulatedPolygons = 0; // field data TriangulatedPolygonCount
   // TetGen's hole list, 3 doubles per point: the regions containing them are removed.
   std::vector<double> holePoints;
+  // TetGen's region list, 4 doubles per point (x, y, z, attribute): the output's
+  // mesh.regionAttribute, one value per region (Regions.h).
+  std::vector<double> regionPoints;
   // The point array of sizes (vtkTetMesher's SizeArrayName), asked for only when refining:
   // fills one value per point, false when the surface has no array of that name.
   std::string sizeArrayName;

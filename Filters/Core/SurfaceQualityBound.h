@@ -6,10 +6,10 @@
 // area(F) H / 3; each other face has an edge on F and an area of at least that edge's length
 // times H / 2, and those edges (F's perimeter) sum to at least 2 l(F) (triangle inequality),
 // so the surface area S is at least l(F) H and the inradius r = 3 V / S at most
-// area(F) / l(F); the tet's longest edge is at least l(F). A needle or cap triangle (an angle near 0 or 180 degrees)
-// thus caps Q min whatever a boundary-conforming mesher does: the report names it, so that a
-// user can tell a poor surface from a poor mesher. (For a good triangle the bound exceeds 1:
-// an equilateral one gives 2.12.)
+// area(F) / l(F); the tet's longest edge is at least l(F). A needle or cap triangle (an angle near
+// 0 or 180 degrees) thus caps Q min whatever a boundary-conforming mesher does: the report names
+// it, so that a user can tell a poor surface from a poor mesher. (For a good triangle the bound
+// exceeds 1: an equilateral one gives 2.12.)
 #pragma once
 
 #include <cstdint>

@@ -83,6 +83,7 @@ VolumeMeshResult meshVolume(const double* points,
     subProgress(progress, 0.0, boundaryShare));
   result.steinerPoints = boundary.steinerPoints;
   result.regionCount = boundary.regionCount;
+  result.regionAttribute = boundary.regionAttribute;
   {
     const double total =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - lapStart).count();

@@ -64,7 +64,8 @@ struct VolumeMeshResult
   int steinerPoints = 0;  // recovery points
   int interiorPoints = 0; // refinement points
   int regionCount = 0;
-  MesherResult boundaryStats; // timings and counters of the boundary stage
+  std::vector<double> regionAttribute; // per region (MesherResult's); empty without region points
+  MesherResult boundaryStats;          // timings and counters of the boundary stage
   RefinementResult refinementStats;
   OptimizationResult optimizationStats;
   bool optimizationStoppedByBound = false; // the work bound above

@@ -180,6 +180,78 @@ TEST(BoundaryMesh, HolePointsOnOrOutsideTheSurfaceAreNamed)
   }
 }
 
+// TetGen's region list: a region takes the attribute of the first region point in it, the
+// others the largest given + 1, + 2, ... in region order; the mesh is the same.
+TEST(BoundaryMesh, RegionPointsGiveRegionAttributes)
+{
+  Surface s = icosphere(2, 1.0);
+  const std::int32_t outer = s.triangleCount();
+  s.append(icosphere(1, 0.5));
+  std::vector<int> sign(s.triangleCount(), 0);
+  std::fill(sign.begin(), sign.begin() + outer, 1);
+  const MesherResult plain = meshAndCheck(s, sign, 2);
+  ASSERT_TRUE(plain.ok);
+  EXPECT_TRUE(plain.regionAttribute.empty());
+  // The attribute of the region of the tet holding the centre, and of the other one.
+  auto attributes = [&](const MesherResult& r)
+  {
+    EXPECT_EQ(r.tets, plain.tets);
+    EXPECT_EQ(r.regionIds, plain.regionIds);
+    std::array<double, 2> got = { -1, -1 };
+    if (r.regionAttribute.size() != 2)
+      return got;
+    // The ball's region: that of a tet on the inner sphere's points only (inside its convex
+    // hull).
+    const std::int32_t innerFirst = s.pointCount() - icosphere(1, 0.5).pointCount();
+    for (std::size_t t = 0; t < r.tets.size() / 4; ++t)
+    {
+      bool inner = true;
+      for (int k = 0; k < 4; ++k)
+        inner = inner && r.tets[4 * t + static_cast<std::size_t>(k)] >= innerFirst &&
+          r.tets[4 * t + static_cast<std::size_t>(k)] < s.pointCount();
+      if (inner)
+      {
+        const int ball = r.regionIds[t];
+        got = { r.regionAttribute[static_cast<std::size_t>(ball)],
+          r.regionAttribute[static_cast<std::size_t>(1 - ball)] };
+        break;
+      }
+    }
+    return got;
+  };
+  MesherOptions options;
+  options.regionPoints = { 0.01, 0.02, 0.03, 7 };
+  EXPECT_EQ(attributes(meshAndCheck(s, sign, 2, options)), (std::array<double, 2>{ 7, 8 }));
+  options.regionPoints = { 0.75, 0.0, 0.1, 3, 0.01, 0.02, 0.03, 7.5, -0.01, 0, 0, 9 };
+  EXPECT_EQ(attributes(meshAndCheck(s, sign, 2, options)), (std::array<double, 2>{ 7.5, 3 }));
+  // Errors name the point.
+  const std::vector<std::pair<std::vector<double>, std::string>> cases = {
+    { { s.points[0], s.points[1], s.points[2], 1 }, "lies on the input surface" },
+    { { 5, 5, 5, 1 }, "region point 0 (5, 5, 5) is outside the input surface" },
+    { { 0, 0, 0.01, 1, 0.5, 0.5, 0.5, std::nan("") },
+      "region point 1 (0.5, 0.5, 0.5) has a non-finite attribute" },
+  };
+  for (const auto& [points, message] : cases)
+  {
+    options.regionPoints = points;
+    const MesherResult r =
+      meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), options);
+    EXPECT_FALSE(r.ok);
+    EXPECT_NE(r.error.find(message), std::string::npos) << r.error;
+  }
+  options.regionPoints = { 0.1, 0, 0, 1 };
+  options.holePoints = { 0, 0, 0.1 };
+  const MesherResult inHole =
+    meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), options);
+  EXPECT_EQ(inHole.error, "region point 0 (0.1, 0, 0) lies in a hole (the region of hole point 0)");
+  options.holePoints.clear();
+  options.enclosedShellsAreHoles = true;
+  const MesherResult inShell =
+    meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), options);
+  EXPECT_EQ(
+    inShell.error, "region point 0 (0.1, 0, 0) lies in a hole (an enclosed shell made a hole)");
+}
+
 // Points that no triangle uses. On the surface (in a triangle, on an edge between two, on an
 // edge of the cube, at a corner) they are left out of the mesh: inserted, they would make the
 // triangles there unrecoverable (or be duplicates). Inside they are inserted (as TetGen does),
