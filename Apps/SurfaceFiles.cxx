@@ -1090,6 +1090,9 @@ void WriteVtu(const SurfaceMeshOutput& mesh, const std::string& path, bool compr
   if (!mesh.mesh.vertexSize.empty())
     pointData.push_back(MakeArray("type=\"Float64\" Name=\"h\"", mesh.mesh.vertexSize, compress));
   cellData.push_back(MakeArray("type=\"Int32\" Name=\"RegionId\"", mesh.mesh.regionIds, compress));
+  if (!mesh.regionAttribute.empty())
+    cellData.push_back(
+      MakeArray("type=\"Float64\" Name=\"RegionAttribute\"", mesh.regionAttribute, compress));
   cellData.push_back(
     MakeArray("type=\"Int64\" IdType=\"1\" Name=\"InputFaceIds\" NumberOfComponents=\"4\"",
       mesh.inputFaceIds,

@@ -285,6 +285,26 @@ void vtkTetMesher::AddHolePoint(double x, double y, double z)
   this->SetHolePoints(points);
 }
 
+void vtkTetMesher::AddRegionPoint(double x, double y, double z, double attribute)
+{
+  this->RegionPoints.insert(this->RegionPoints.end(), { x, y, z, attribute });
+  this->Modified();
+}
+
+void vtkTetMesher::RemoveAllRegionPoints()
+{
+  if (!this->RegionPoints.empty())
+  {
+    this->RegionPoints.clear();
+    this->Modified();
+  }
+}
+
+int vtkTetMesher::GetNumberOfRegionPoints()
+{
+  return static_cast<int>(this->RegionPoints.size() / 4);
+}
+
 void vtkTetMesher::RemoveAllHolePoints()
 {
   if (this->HolePoints && this->HolePoints->GetNumberOfPoints() > 0)
@@ -304,6 +324,7 @@ void vtkTetMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent
      << "HolePoints: " << (this->HolePoints ? this->HolePoints->GetNumberOfPoints() : vtkIdType(0))
      << "\n";
+  os << indent << "RegionPoints: " << this->RegionPoints.size() / 4 << "\n";
   os << indent << "MaximumSteinerPoints: " << this->MaximumSteinerPoints << "\n";
   os << indent << "RemoveSteinerPoints: " << this->RemoveSteinerPoints << "\n";
   os << indent << "CheckInput: " << this->CheckInput << "\n";
@@ -478,6 +499,7 @@ int vtkTetMesher::RequestData(vtkInformation*,
   job.cellOfTriangle = cellOfTriangle.data();
   job.triangleIdsAreNotCellIds = firstPolyId > 0 || triangulatedPolygons > 0;
   job.triangulatedPolygons = static_cast<double>(triangulatedPolygons);
+  job.regionPoints = this->RegionPoints;
   if (this->HolePoints)
     for (vtkIdType i = 0; i < this->HolePoints->GetNumberOfPoints(); ++i)
     {
@@ -559,6 +581,15 @@ int vtkTetMesher::RequestData(vtkInformation*,
   regionIds->SetNumberOfTuples(tetCount);
   std::copy(result.mesh.regionIds.begin(), result.mesh.regionIds.end(), regionIds->GetPointer(0));
   output->GetCellData()->AddArray(regionIds);
+  if (!result.regionAttribute.empty())
+  {
+    vtkNew<vtkDoubleArray> attributes;
+    attributes->SetName("RegionAttribute");
+    attributes->SetNumberOfTuples(tetCount);
+    std::copy(
+      result.regionAttribute.begin(), result.regionAttribute.end(), attributes->GetPointer(0));
+    output->GetCellData()->AddArray(attributes);
+  }
 
   vtkNew<vtkIdTypeArray> inputFaces;
   inputFaces->SetName("InputFaceIds");

@@ -41,6 +41,7 @@
 #include "vtkUnstructuredGridAlgorithm.h"
 
 #include <string> // for LastError
+#include <vector> // for RegionPoints
 
 class vtkAlgorithmOutput;
 class vtkPoints;
@@ -84,6 +85,19 @@ public:
    */
   void AddHolePoint(double x, double y, double z);
   void RemoveAllHolePoints();
+  ///@}
+
+  ///@{
+  /**
+   * TetGen's region list (its `-A`): a point inside a region and an attribute. The output then
+   * has a cell array `RegionAttribute` (doubles): each region's tets take the attribute of the
+   * first region point in it, regions without one the largest given attribute + 1, + 2, ...
+   * in RegionId order. A point outside the surface, on it or in a removed region fails the run
+   * naming the point. RegionId (tetmesher's own numbering) stays as it is.
+   */
+  void AddRegionPoint(double x, double y, double z, double attribute);
+  void RemoveAllRegionPoints();
+  int GetNumberOfRegionPoints();
   ///@}
 
   vtkMTimeType GetMTime() override;
@@ -334,6 +348,7 @@ protected:
   std::string StageTimings;
 
   vtkPoints* HolePoints = nullptr;
+  std::vector<double> RegionPoints; // 4 per point: x, y, z, attribute
 
 private:
   vtkTetMesher(const vtkTetMesher&) = delete;

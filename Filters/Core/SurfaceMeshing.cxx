@@ -264,6 +264,14 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
         out.inputFaceIds[4 * t + kVtkFromCore[f]] = input.cellOfTriangle[tri];
     }
   }
+  // Each tet's region attribute (TetGen's region list), when region points were given.
+  if (!result.regionAttribute.empty())
+  {
+    out.regionAttribute.resize(tetCount);
+    for (std::size_t t = 0; t < tetCount; ++t)
+      out.regionAttribute[t] =
+        result.regionAttribute[static_cast<std::size_t>(result.regionIds[t])];
+  }
   std::vector<std::int32_t>().swap(result.tetFaceTriangle); // used up
   std::vector<std::int32_t>().swap(result.tets);            // out.cells has them
   lap("output conversion");

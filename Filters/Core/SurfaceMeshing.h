@@ -81,6 +81,8 @@ struct SurfaceMeshOutput
   std::vector<std::int64_t> cells; // 4 point ids per tet, VTK_TETRA order
   std::vector<std::int64_t> inputFaceIds; // 4 per tet: the input cell of face i (opposite
                                           // point i of the VTK tet), or -1
+  std::vector<double> regionAttribute;    // per tet, its region's attribute (regionPoints);
+                                          // empty without region points
   MeshQuality quality;                    // Quality, MinDihedralAngle, MaxDihedralAngle
   // The output's field data in order: the quality summary, then the counts.
   std::vector<std::pair<std::string, double>> fieldData;

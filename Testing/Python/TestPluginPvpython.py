@@ -87,4 +87,15 @@ for hole_points, regions_expected, volume in (([0.01, 0.02, 0.03], 1, shell_volu
     assert len(set(result_regions.tolist())) == regions_expected, (hole_points, set(result_regions.tolist()))
 print("TetMesher proxy: HolePoints removes the inner ball, and emptied keeps it")
 
+# RegionPoints, TetGen's region list (x y z attribute): a RegionAttribute cell array, the inner
+# ball 5 and the shell 6 (largest + 1); emptied, no such array.
+for region_points, expected in (([0.01, 0.02, 0.03, 5.0], [5.0, 6.0]), ([], None)):
+    holed.RegionPoints = region_points
+    holed.UpdatePipeline()
+    result = servermanager.Fetch(holed, arg1=None, arg2=None, idx=0)
+    array = result.GetCellData().GetArray("RegionAttribute")
+    got = None if array is None else sorted(set(vtk_to_numpy(array).tolist()))
+    assert got == expected, (region_points, got)
+print("TetMesher proxy: RegionPoints gives RegionAttribute, and emptied drops it")
+
 print("TestPluginPvpython: ok, Q min %.4f mean %.4f" % (q_ref.min(), q_ref.mean()))

@@ -140,6 +140,41 @@ if not (named and without > with_hole == added and hole.GetNumberOfPoints() == 1
     failures.append(f"AddHolePoint: named {named}, tets {with_hole} / {without} / {added}, "
                     f"caller's points {hole.GetNumberOfPoints()}")
 
+# AddRegionPoint / RemoveAllRegionPoints (TetGen's region list, the plugin's RegionPoints): a
+# cell array RegionAttribute, the inner ball's tets 5 (their volume the inner shell's), the
+# others 6 (largest + 1); without region points no such array; a point outside is named.
+nested_points, nested_triangles = read_surface(os.path.join(data, "nested_spheres.vtp"))
+inner_volume = min(enclosed_volume(nested_points, nested_triangles[sh]) for sh in shells(nested_triangles))
+regioned = vtkTetMesher()
+regioned.SetInputData(to_polydata(nested_points, nested_triangles))
+regioned.SetRefine(False)
+regioned.SetOptimize(False)
+region_errors = collect_errors(regioned)
+regioned.AddRegionPoint(0.01, 0.02, 0.03, 5.0)
+regioned.Update()
+grid = regioned.GetOutput()
+attribute_array = grid.GetCellData().GetArray("RegionAttribute")
+if attribute_array is None:
+    failures.append("AddRegionPoint: no RegionAttribute array")
+else:
+    out_points, tets = grid_arrays(grid)
+    attributes = vtk_to_numpy(attribute_array)
+    a, b, c, d = (out_points[tets[:, k]] for k in range(4))
+    volumes = np.abs(np.einsum("ij,ij->i", b - a, np.cross(c - a, d - a))) / 6
+    ball = volumes[attributes == 5.0].sum()
+    if sorted(set(attributes.tolist())) != [5.0, 6.0] or abs(ball - inner_volume) > 1e-9 * inner_volume:
+        failures.append(f"AddRegionPoint: attributes {sorted(set(attributes.tolist()))}, "
+                        f"ball volume {ball} vs {inner_volume}")
+regioned.AddRegionPoint(3.0, 0.0, 0.0, 1.0)
+regioned.Update()
+if not any("region point 1 (3, 0, 0) is outside the input surface" in e for e in region_errors):
+    failures.append(f"a region point outside the surface: {region_errors}")
+regioned.RemoveAllRegionPoints()
+regioned.Update()
+if regioned.GetOutput().GetCellData().GetArray("RegionAttribute") is not None or \
+        regioned.GetNumberOfRegionPoints() != 0:
+    failures.append("RemoveAllRegionPoints: RegionAttribute is still there")
+
 # A CAD-like part whose recovery needs Steiner points (35-70): none may end up on a face.
 check("gear.vtp", 1, Refine=False, Optimize=False)
 
