@@ -152,6 +152,9 @@ int RunMesh(int argc, char* argv[])
       job.holePoints = surface.holePoints;
       job.holePoints.insert(
         job.holePoints.end(), options.holePoints.begin(), options.holePoints.end());
+      job.regionPoints = surface.regionPoints;
+      job.regionPoints.insert(
+        job.regionPoints.end(), options.regionPoints.begin(), options.regionPoints.end());
       job.sizeArrayName = options.size > 0 ? kConstantSizeArray : options.sizeArray;
       job.readSizeArray = [&](std::vector<double>& sizes)
       {
@@ -198,6 +201,7 @@ int RunMesh(int argc, char* argv[])
         out.cells = mesh.cells.data();
         out.tetCount = static_cast<std::int64_t>(mesh.cells.size() / 4);
         out.regionIds = mesh.mesh.regionIds.empty() ? nullptr : mesh.mesh.regionIds.data();
+        out.regionAttribute = mesh.regionAttribute.empty() ? nullptr : mesh.regionAttribute.data();
         out.inputFaceIds = mesh.inputFaceIds.empty() ? nullptr : mesh.inputFaceIds.data();
         WriteExportMesh(out, options.output);
       }

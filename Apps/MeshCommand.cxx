@@ -51,8 +51,9 @@ int RunMeshWithVtk(const MeshOptions& o)
     {
       StageClock clock(o.processStart);
       std::string readingNotes; // what the file holds but the mesh does not use
-      std::vector<double> holePoints;
-      vtkSmartPointer<vtkPolyData> surface = ReadSurface(o.input, &readingNotes, &holePoints);
+      std::vector<double> holePoints, regionPoints;
+      vtkSmartPointer<vtkPolyData> surface =
+        ReadSurface(o.input, &readingNotes, &holePoints, &regionPoints);
       clock.Lap("reading");
       vtkNew<vtkTetMesher> mesher;
       std::string sizeArray = o.sizeArray;
@@ -97,6 +98,10 @@ int RunMeshWithVtk(const MeshOptions& o)
           holes->InsertNextPoint(&holePoints[i]);
         mesher->SetHolePoints(holes);
       }
+      regionPoints.insert(regionPoints.end(), o.regionPoints.begin(), o.regionPoints.end());
+      for (std::size_t i = 0; i + 3 < regionPoints.size(); i += 4)
+        mesher->AddRegionPoint(
+          regionPoints[i], regionPoints[i + 1], regionPoints[i + 2], regionPoints[i + 3]);
       mesher->SetMaximumSteinerPoints(o.maxSteiner);
       mesher->SetCheckInput(o.check);
       vtkNew<ProgressBar> bar;

@@ -6,6 +6,7 @@
 #include <array>
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <unordered_set>
@@ -145,8 +146,23 @@ std::int64_t RegionOf(const ExportMesh& mesh, std::int64_t t)
   return mesh.regionIds ? mesh.regionIds[t] : 0;
 }
 
+// Gmsh's physical tags are positive integers: the region attributes when they all are.
+bool AttributesAreTags(const ExportMesh& mesh)
+{
+  if (!mesh.regionAttribute)
+    return false;
+  for (std::int64_t t = 0; t < mesh.tetCount; ++t)
+  {
+    const double a = mesh.regionAttribute[t];
+    if (!(a >= 1 && a <= 2147483647.0 && a == std::floor(a)))
+      return false;
+  }
+  return true;
+}
+
 void WriteGmsh22(const ExportMesh& mesh, const std::string& path)
 {
+  const bool attributeTags = AttributesAreTags(mesh);
   const std::vector<BoundaryTriangle> triangles = BoundaryTriangles(mesh);
   TextFile out(path);
   out << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n" << mesh.pointCount << '\n';
@@ -168,7 +184,9 @@ void WriteGmsh22(const ExportMesh& mesh, const std::string& path)
   for (std::int64_t t = 0; t < mesh.tetCount; ++t)
   {
     const std::int64_t tag = RegionOf(mesh, t) + 1;
-    out << ++element << " 4 2 " << tag << ' ' << tag;
+    const std::int64_t physical =
+      attributeTags ? static_cast<std::int64_t>(mesh.regionAttribute[t]) : tag;
+    out << ++element << " 4 2 " << physical << ' ' << tag;
     for (int i = 0; i < 4; ++i)
       out << ' ' << mesh.cells[4 * t + i] + 1;
     out << '\n';
@@ -198,7 +216,10 @@ void WriteTetGen(const ExportMesh& mesh, const std::string& path)
       ele << t;
       for (int i = 0; i < 4; ++i)
         ele << ' ' << mesh.cells[4 * t + i];
-      ele << ' ' << RegionOf(mesh, t) << '\n';
+      if (mesh.regionAttribute)
+        ele << ' ' << mesh.regionAttribute[t] << '\n';
+      else
+        ele << ' ' << RegionOf(mesh, t) << '\n';
     }
     ele.Close();
   }

@@ -209,7 +209,8 @@ vtkSmartPointer<vtkDataSet> ReadVolumeMesh(const std::string& path)
 
 vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path,
   std::string* notes,
-  std::vector<double>* holePoints)
+  std::vector<double>* holePoints,
+  std::vector<double>* regionPoints)
 {
   const std::string ext = LowerExtension(path);
   RequireReadableFile(path);
@@ -224,6 +225,8 @@ vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path,
     const SurfaceData data = ReadTetGenSurface(path, notes ? *notes : unused);
     if (holePoints)
       *holePoints = data.holePoints;
+    if (regionPoints)
+      *regionPoints = data.regionPoints;
     return PolyDataOf(data);
   }
   if (ext == ".msh")
@@ -296,7 +299,11 @@ void WriteExportFromGrid(vtkUnstructuredGrid* mesh, const std::string& path)
   }
   std::vector<std::int32_t> regions;
   std::vector<std::int64_t> faces;
+  std::vector<double> attributes;
   vtkDataArray* regionArray = mesh->GetCellData()->GetArray("RegionId");
+  vtkDataArray* attributeArray = mesh->GetCellData()->GetArray("RegionAttribute");
+  for (vtkIdType c = 0; attributeArray && c < tetCount; ++c)
+    attributes.push_back(attributeArray->GetComponent(c, 0));
   vtkDataArray* faceArray = mesh->GetCellData()->GetArray("InputFaceIds");
   for (vtkIdType c = 0; regionArray && c < tetCount; ++c)
     regions.push_back(static_cast<std::int32_t>(regionArray->GetComponent(c, 0)));
@@ -310,6 +317,7 @@ void WriteExportFromGrid(vtkUnstructuredGrid* mesh, const std::string& path)
   out.cells = cells.data();
   out.tetCount = tetCount;
   out.regionIds = regions.empty() ? nullptr : regions.data();
+  out.regionAttribute = attributes.empty() ? nullptr : attributes.data();
   out.inputFaceIds = faces.empty() ? nullptr : faces.data();
   WriteExportMesh(out, path);
 }

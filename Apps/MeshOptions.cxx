@@ -26,12 +26,13 @@ boundary edges at each surface point, interpolated inside), then the worst eleme
 improved by flips, edge removal and smoothing.
 
 SURFACE: .stl .obj .ply .vtp .vtk .off, TetGen .smesh .poly .face (points from NAME.node
-     when the file lists none; the regions of its hole points are removed), Gmsh .msh
-     (2.2 or 4.1 ASCII: its triangles and quadrangles); input cell ids count the
-     polygons read, in file order
-OUT: .vtu or .vtk (VTK), .msh (Gmsh 2.2 ASCII: tets tagged RegionId + 1, boundary
-     triangles input cell id + 1), .node or .ele (TetGen: NAME.node, NAME.ele with the
-     RegionId attribute, NAME.face with the input cell id + 1 as marker)
+     when the file lists none; the regions of its hole points are removed, its region
+     list gives a RegionAttribute cell array), Gmsh .msh (2.2 or 4.1 ASCII: its
+     triangles and quadrangles); input cell ids count the polygons read, in file order
+OUT: .vtu or .vtk (VTK), .msh (Gmsh 2.2 ASCII: tets tagged RegionId + 1, or the region
+     attribute as physical tag when all are whole numbers from 1; boundary triangles
+     input cell id + 1), .node or .ele (TetGen: NAME.node, NAME.ele with the region
+     attribute or RegionId, NAME.face with the input cell id + 1 as marker)
 
 options:
   -o, --output FILE     where to write the mesh (required)
@@ -61,6 +62,9 @@ options:
   --holes               enclosed shells are holes instead of regions of their own
   --hole X,Y,Z          remove the region containing the point (X,Y,Z), as a hole in
                         TetGen's hole list (repeatable; added to a .smesh/.poly's list)
+  --region X,Y,Z,A      give the region containing (X,Y,Z) the attribute A, as TetGen's
+                        region list with -A: a RegionAttribute cell array (repeatable;
+                        added to a .smesh/.poly's list; other regions: largest A + 1, ...)
   --max-steiner N       budget of recovery Steiner points (default 100 + 4 per triangle)
   --time-limit S        stop with an error after S seconds (default: no limit)
   --memory-limit MB     refuse a size field whose mesh is estimated above MB megabytes
@@ -185,27 +189,32 @@ int ParseMeshOptions(int argc, char* argv[], MeshOptions& o)
       }
       o.*(number->field) = std::min(value, number->high);
     }
-    else if (arg == "--hole" && hasValue)
+    else if ((arg == "--hole" || arg == "--region") && hasValue)
     {
+      // --hole X,Y,Z; --region X,Y,Z,ATTRIBUTE.
+      const bool region = arg == "--region";
+      const int count = region ? 4 : 3;
       const char* text = argv[++i];
-      double x[3];
+      double x[4];
       const char* at = text;
       char* end = nullptr;
       bool ok = true;
-      for (int k = 0; k < 3 && ok; ++k)
+      for (int k = 0; k < count && ok; ++k)
       {
         x[k] = std::strtod(at, &end);
-        ok = end != at && std::isfinite(x[k]) && *end == (k < 2 ? ',' : '\0');
+        ok = end != at && std::isfinite(x[k]) && *end == (k < count - 1 ? ',' : '\0');
         at = end + 1;
       }
       if (!ok)
       {
         std::fprintf(stderr,
-          "tetmesher mesh: --hole wants a point X,Y,Z of three finite numbers, not '%s'\n",
+          region ? "tetmesher mesh: --region wants X,Y,Z,ATTRIBUTE, four finite numbers, not '%s'\n"
+                 : "tetmesher mesh: --hole wants a point X,Y,Z of three finite numbers, not '%s'\n",
           text);
         return 2;
       }
-      o.holePoints.insert(o.holePoints.end(), x, x + 3);
+      std::vector<double>& list = region ? o.regionPoints : o.holePoints;
+      list.insert(list.end(), x, x + count);
     }
     else if (arg == "--max-steiner" && i + 1 < argc)
     {

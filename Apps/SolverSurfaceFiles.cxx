@@ -127,7 +127,7 @@ void AddFacetWithoutHoles(TokenFile& file,
 }
 
 // Parts 3 and 4 of .smesh and .poly: the hole list (into surface.holePoints) and the region
-// list (noted). Both may be missing at the end of the file.
+// list (into surface.regionPoints; volume bounds noted). Both may be missing at the end.
 void ReadHolesAndRegions(TokenFile& file,
   std::istringstream& line,
   SurfaceData& surface,
@@ -153,9 +153,20 @@ void ReadHolesAndRegions(TokenFile& file,
     return;
   if (!(line >> regions) || regions < 0)
     file.Fail("expected the region list's count");
-  if (regions > 0)
-    notes += "the region list (" + std::to_string(regions) +
-      " region(s)) is not used: RegionId numbers the regions in tetmesher's own order\n";
+  surface.regionPoints.reserve(4 * ReserveBound(regions));
+  bool volumeBounds = false;
+  for (long r = 0; r < regions; ++r)
+  {
+    long number;
+    double x, y, z, attribute, volume;
+    if (!file.NextLine(line) || !(line >> number >> x >> y >> z >> attribute))
+      file.Fail("expected region " + std::to_string(r) + " of " + std::to_string(regions) +
+        " as 'number x y z attribute [volume bound]'");
+    volumeBounds = volumeBounds || static_cast<bool>(line >> volume);
+    surface.regionPoints.insert(surface.regionPoints.end(), { x, y, z, attribute });
+  }
+  if (volumeBounds)
+    notes += "the region list's volume bounds are not used (give the size field instead)\n";
 }
 
 } // namespace

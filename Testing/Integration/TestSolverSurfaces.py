@@ -3,7 +3,7 @@
 Usage: TestSolverSurfaces.py TETMESHER_EXE CORPUS_DIR
 
 Each case's .off is written as TetGen .smesh (points inline, numbered from 0, with markers
-and comments), .smesh numbered from 1 with its points in NAME.node and a region list, .poly,
+and comments), .smesh numbered from 1 with its points in NAME.node and an empty region list, .poly,
 .face with NAME.node, and Gmsh .msh 2.2 and 4.1 (node tags neither contiguous nor from 1,
 element tags out of order, points and lines among the elements; 4.1 with parametric
 coordinates). Meshing each must give the mesh of the .off byte for byte (written as .msh,
@@ -68,13 +68,13 @@ def write_tetgen(stem, points, polygons):
     point_list += ["%d %s 0  # point" % (i, " ".join(x)) for i, x in enumerate(points)]
     write(stem + "-inline.smesh", ["# a surface"] + point_list + body + ["0", "0"])
     files[stem + "-inline.smesh"] = None
-    # Numbered from 1, points in NAME.node, a region list, no marker column.
+    # Numbered from 1, points in NAME.node, an empty region list, no marker column.
     write(stem + "-one.node", ["%d 3 0 0" % len(points)] +
           ["%d %s" % (i + 1, " ".join(x)) for i, x in enumerate(points)])
     write(stem + "-one.smesh", ["0 3 0 0", "%d 0" % len(polygons)] +
           ["%d %s" % (len(p), " ".join(str(v + 1) for v in p)) for p in polygons] +
-          ["0", "1", "1 0.5 0.5 0.5 10 0.01"])
-    files[stem + "-one.smesh"] = "the region list (1 region(s)) is not used"
+          ["0", "0"])
+    files[stem + "-one.smesh"] = None
     # .poly: one polygon per facet, a hole count and a marker on the facet line.
     poly = ["%d 3 0 0" % len(points)] + ["%d %s" % (i, " ".join(x)) for i, x in enumerate(points)]
     poly += ["%d 1" % len(polygons)]
@@ -204,6 +204,24 @@ def imprint_poly(depth=1, side_by_side=False):
         sides = ["4 %d %d %d %d" % (a, b, b + 4, a + 4) for a, b in ((0, 1), (1, 2), (2, 3), (3, 0))]
     rows += ["6 0", "1", "4 0 3 2 1"] + top + [r for side in sides for r in ("1", side)]
     return rows + ["0", "0"]
+
+
+def attribute_volumes(stem):
+    """Six times the summed volume of a TetGen .node/.ele pair's tets per attribute, exactly."""
+    from fractions import Fraction
+    node = [r.split() for r in open(stem + ".node").read().split("\n") if r.strip() and not r.startswith("#")]
+    first = int(node[1][0])
+    points = {int(r[0]) - first: [Fraction(v) for v in r[1:4]] for r in node[1:]}
+    ele = [r.split() for r in open(stem + ".ele").read().split("\n") if r.strip() and not r.startswith("#")]
+    volumes = {}
+    for row in ele[1:]:
+        a, b, c, d = (points[int(v) - first] for v in row[1:5])
+        u, v, w = ([q[k] - a[k] for k in range(3)] for q in (b, c, d))
+        det = (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+               u[2] * (v[0] * w[1] - v[1] * w[0]))
+        attribute = str(Fraction(row[5]))  # "10" for 10 and 10.0
+        volumes[attribute] = volumes.get(attribute, 0) + abs(det)
+    return volumes
 
 
 def msh_volume(path):
@@ -352,6 +370,9 @@ try:
     for value in ("0,0", "0,0,0,", "a,0,0", "0,0,nan", "0;0;0"):
         code, text = run(["mesh", stem + ".off", "-o", stem + "-x.vtu", "-q", "--hole", value])
         check(code == 2 and "--hole wants a point X,Y,Z" in text, "--hole %s: exit %d: %s" % (value, code, text))
+    for value in ("0,0,0", "0,0,0,1,", "0,0,0,inf"):
+        code, text = run(["mesh", stem + ".off", "-o", stem + "-x.vtu", "-q", "--region", value])
+        check(code == 2 and "--region wants X,Y,Z,ATTRIBUTE" in text, "--region %s: exit %d: %s" % (value, code, text))
     for path_flag in ([], ["--with-vtk"]):
         code, text = run(["mesh", stem + ".off", "-o", stem + "-x.vtu", "-q", "--hole", "2,0,0"] + path_flag)
         check(code == 1 and "hole point 0 (2, 0, 0) is outside the input surface" in text,
@@ -415,6 +436,38 @@ try:
         code, text = run(["mesh", os.path.join(work, "example.poly"), "-o",
                           os.path.join(work, "example.vtu"), "--boundary-only"])
         check(code == 0 and "4 regions" in text, "example.poly: exit %d: %s" % (code, text))
+        # Its region list (attributes 10 and 20) read as TetGen -A reads it: the volume under
+        # each attribute is TetGen's exactly (the other two regions, largest + 1 and + 2, may
+        # be numbered the other way round), on both paths, and a --region on top of it.
+        tetgen = shutil.which("tetgen")
+        if check(tetgen is not None, "tetgen is not installed (scripts/setup.sh installs it)"):
+            theirs = os.path.join(work, "example-tetgen.poly")
+            write(theirs, rows[:at] + ["0"] + rows[at + 3:])
+            subprocess.run([tetgen, "-pAQ", theirs], check=True, capture_output=True, timeout=300)
+            expected = attribute_volumes(os.path.join(work, "example-tetgen.1"))
+            for extra in ([], ["--with-vtk"]):
+                code, text = run(["mesh", os.path.join(work, "example.poly"), "-o",
+                                  os.path.join(work, "example-ours.ele"), "--boundary-only"] + extra)
+                got = attribute_volumes(os.path.join(work, "example-ours")) if code == 0 else {}
+                check(code == 0 and set(got) == set(expected) and all(got[a] == expected[a] for a in ("10", "20"))
+                      and sorted(got.values()) == sorted(expected.values())
+                      and "the region list's volume bounds are not used" in text,
+                      "example.poly regions %s: exit %d, %s against TetGen's %s: %s" % (extra, code, got, expected, text))
+            # In Gmsh's .msh the whole-number attributes are the tets' physical tags.
+            code, text = run(["mesh", os.path.join(work, "example.poly"), "-o",
+                              os.path.join(work, "example-ours.msh"), "--boundary-only"])
+            tags = set()
+            if code == 0:
+                lines = open(os.path.join(work, "example-ours.msh")).read().split("\n")
+                tags = {row.split()[3] for row in lines if len(row.split()) == 9 and row.split()[1] == "4"}
+            check(tags == set(expected), "example.poly .msh physical tags %s, attributes %s" % (tags, sorted(expected)))
+            code, text = run(["mesh", os.path.join(work, "example.poly"), "-o",
+                              os.path.join(work, "example-ours.ele"), "--boundary-only", "--region", "0.1,0.1,0.1,30"])
+            got = attribute_volumes(os.path.join(work, "example-ours")) if code == 0 else {}
+            # The point lies in region 10's region, which keeps the file's first point's 10;
+            # the largest given is now 30: the other two take 31 and 32.
+            check(code == 0 and sorted(got) == ["10", "20", "31", "32"] and got["10"] == expected["10"],
+                  "example.poly --region: exit %d, %s: %s" % (code, got, text))
 
     # 5. Defects: exit 1, the file and the defect named, the same on both paths.
     tet = ["4 3 0 0", "0 0 0 0", "1 1 0 0", "2 0 1 0", "3 0 0 1"]
