@@ -420,11 +420,6 @@ int vtkTetMesher::RequestData(vtkInformation*,
   {
     return fail("the input has too many points for 32-bit ids");
   }
-  if (input->GetNumberOfStrips() > 0)
-  {
-    return fail("the input has triangle strips: convert them to triangles first "
-                "(vtkTriangleFilter)");
-  }
   // Input cell ids of polygons come after the vertices and lines of a vtkPolyData.
   const vtkIdType firstPolyId = input->GetNumberOfVerts() + input->GetNumberOfLines();
   std::vector<double> coords(static_cast<std::size_t>(3 * pointCount));
@@ -487,6 +482,39 @@ int vtkTetMesher::RequestData(vtkInformation*,
       ++triangulatedPolygons;
     }
   }
+  // Triangle strips (after the polygons in cell id order), as vtkTriangleStrip decomposes
+  // them: every other triangle turned so that all keep the strip's orientation. Triangles with
+  // a repeated point id are the joints that stitch strips together, not surface: left out.
+  const vtkIdType stripCount = input->GetNumberOfStrips();
+  if (stripCount > 0)
+  {
+    auto iter = vtk::TakeSmartPointer(input->GetStrips()->NewIterator());
+    vtkIdType stripIndex = 0;
+    for (iter->GoToFirstCell(); !iter->IsDoneWithTraversal(); iter->GoToNextCell(), ++stripIndex)
+    {
+      vtkIdType size;
+      const vtkIdType* ids;
+      iter->GetCurrentCell(size, ids);
+      const vtkIdType cellId = firstPolyId + input->GetNumberOfPolys() + stripIndex;
+      if (size < 3)
+      {
+        std::ostringstream message;
+        message << "input cell " << cellId << " is a triangle strip with " << size << " points";
+        return fail(message.str());
+      }
+      for (vtkIdType k = 0; k + 2 < size; ++k)
+      {
+        const vtkIdType a = ids[k], b = ids[k + 1], c = ids[k + 2];
+        if (a == b || b == c || a == c)
+          continue;
+        if (k % 2 == 0)
+          triangles.insert(triangles.end(), { pointId(a), pointId(b), pointId(c) });
+        else
+          triangles.insert(triangles.end(), { pointId(b), pointId(a), pointId(c) });
+        cellOfTriangle.push_back(cellId);
+      }
+    }
+  }
   const auto triangleCount = static_cast<std::int32_t>(triangles.size() / 3);
   lap("input conversion");
 
@@ -497,7 +525,7 @@ int vtkTetMesher::RequestData(vtkInformation*,
   job.triangles = triangles.data();
   job.triangleCount = triangleCount;
   job.cellOfTriangle = cellOfTriangle.data();
-  job.triangleIdsAreNotCellIds = firstPolyId > 0 || triangulatedPolygons > 0;
+  job.triangleIdsAreNotCellIds = firstPolyId > 0 || triangulatedPolygons > 0 || stripCount > 0;
   job.triangulatedPolygons = static_cast<double>(triangulatedPolygons);
   job.regionPoints = this->RegionPoints;
   if (this->HolePoints)

@@ -6,7 +6,8 @@
  * a 5-tet box, recovery of the missing surface edges and triangles by flips and Steiner
  * points strictly inside the volume, removal of the exterior by a flood fill.
  *
- * Input: a vtkPolyData of triangles (polygons are triangulated), closed, possibly several shells;
+ * Input: a vtkPolyData of triangles (polygons are triangulated, triangle strips decomposed),
+ * closed, possibly several shells;
  * triangles shared by two regions (multi-material interfaces, edges with 3+ triangles) are allowed.
  * The surface is checked first (exactly): open or non-manifold edges, self-intersections,
  * degenerate or duplicate triangles, coincident points, non-finite coordinates are refused with an

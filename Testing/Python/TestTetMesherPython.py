@@ -175,6 +175,41 @@ if regioned.GetOutput().GetCellData().GetArray("RegionAttribute") is not None or
         regioned.GetNumberOfRegionPoints() != 0:
     failures.append("RemoveAllRegionPoints: RegionAttribute is still there")
 
+# Triangle strips (vtkStripper's output) are decomposed as vtkTriangleStrip does: the boundary
+# is exactly the strips' triangles (their joints with a repeated point left out), the input
+# cell ids are the strips', and the mesh has the torus's volume.
+from vtkmodules.vtkFiltersCore import vtkStripper, vtkTriangleFilter  # noqa: E402
+torus_points, torus_triangles = read_surface(os.path.join(data, "torus.vtp"))
+stripper = vtkStripper()
+stripper.SetInputData(to_polydata(torus_points, torus_triangles))
+stripper.Update()
+stripped = stripper.GetOutput()
+expanded = vtkTriangleFilter()
+expanded.SetInputData(stripped)
+expanded.Update()
+strip_triangles = vtk_to_numpy(expanded.GetOutput().GetPolys().GetConnectivityArray()).reshape(-1, 3)
+striped = vtkTetMesher()
+striped.SetInputData(stripped)
+striped.SetRefine(False)
+striped.SetOptimize(False)
+strip_errors = collect_errors(striped)
+striped.Update()
+if stripped.GetNumberOfStrips() == 0 or strip_errors or striped.GetLastWarnings():
+    # (A strip's every other triangle turned the wrong way would warn of the orientation.)
+    failures.append(f"strips: {stripped.GetNumberOfStrips()} strips, errors {strip_errors}, "
+                    f"warnings {striped.GetLastWarnings()}")
+else:
+    out_points, tets = grid_arrays(striped.GetOutput())
+    problems = check_boundary_mesh(torus_points, strip_triangles, out_points, tets,
+                                   vtk_to_numpy(striped.GetOutput().GetCellData().GetArray("RegionId")),
+                                   enclosed_volume(torus_points, strip_triangles))
+    face_ids = vtk_to_numpy(striped.GetOutput().GetCellData().GetArray("InputFaceIds"))
+    used = set(face_ids[face_ids >= 0].tolist())
+    if problems or len(strip_triangles) != len(torus_triangles) or \
+            not used <= set(range(stripped.GetNumberOfCells())) or len(used) != stripped.GetNumberOfStrips():
+        failures.append(f"strips: {problems}, {len(strip_triangles)} triangles from "
+                        f"{stripped.GetNumberOfStrips()} strips, input cells named {len(used)}")
+
 # A CAD-like part whose recovery needs Steiner points (35-70): none may end up on a face.
 check("gear.vtp", 1, Refine=False, Optimize=False)
 
