@@ -123,11 +123,10 @@ int RunMesh(int argc, char* argv[])
       StageClock clock(options.processStart);
       RequireReadableFile(options.input);
       SurfaceData surface;
-      std::string readingNotes; // what the file holds but the mesh does not use
       if (inExt == ".off")
         surface = ReadOff(options.input);
       else if (IsTetGenSurfaceExtension(inExt))
-        surface = ReadTetGenSurface(options.input, readingNotes);
+        surface = ReadTetGenSurface(options.input);
       else if (inExt == ".msh")
         surface = ReadGmshSurface(options.input);
       else if (inExt == ".stl" ? !ReadStl(options.input, surface)
@@ -155,6 +154,9 @@ int RunMesh(int argc, char* argv[])
       job.regionPoints = surface.regionPoints;
       job.regionPoints.insert(
         job.regionPoints.end(), options.regionPoints.begin(), options.regionPoints.end());
+      job.regionMaxSizes = surface.regionMaxSizes;
+      job.regionMaxSizes.insert(
+        job.regionMaxSizes.end(), options.regionMaxSizes.begin(), options.regionMaxSizes.end());
       job.sizeArrayName = options.size > 0 ? kConstantSizeArray : options.sizeArray;
       job.readSizeArray = [&](std::vector<double>& sizes)
       {
@@ -220,7 +222,7 @@ int RunMesh(int argc, char* argv[])
       };
       summary.histogram = mesh.quality.histogram;
       summary.seconds = seconds;
-      summary.warnings = readingNotes + mesh.warnings;
+      summary.warnings = mesh.warnings;
       ReportMesh(options, clock, summary);
       return 0;
     });

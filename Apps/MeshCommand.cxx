@@ -50,10 +50,11 @@ int RunMeshWithVtk(const MeshOptions& o)
     [&o]
     {
       StageClock clock(o.processStart);
-      std::string readingNotes; // what the file holds but the mesh does not use
-      std::vector<double> holePoints, regionPoints;
-      vtkSmartPointer<vtkPolyData> surface =
-        ReadSurface(o.input, &readingNotes, &holePoints, &regionPoints);
+      SurfaceData lists; // TetGen's hole and region lists
+      vtkSmartPointer<vtkPolyData> surface = ReadSurface(o.input, &lists);
+      std::vector<double>& holePoints = lists.holePoints;
+      std::vector<double>& regionPoints = lists.regionPoints;
+      std::vector<double>& regionMaxSizes = lists.regionMaxSizes;
       clock.Lap("reading");
       vtkNew<vtkTetMesher> mesher;
       std::string sizeArray = o.sizeArray;
@@ -99,9 +100,13 @@ int RunMeshWithVtk(const MeshOptions& o)
         mesher->SetHolePoints(holes);
       }
       regionPoints.insert(regionPoints.end(), o.regionPoints.begin(), o.regionPoints.end());
+      regionMaxSizes.insert(regionMaxSizes.end(), o.regionMaxSizes.begin(), o.regionMaxSizes.end());
       for (std::size_t i = 0; i + 3 < regionPoints.size(); i += 4)
-        mesher->AddRegionPoint(
-          regionPoints[i], regionPoints[i + 1], regionPoints[i + 2], regionPoints[i + 3]);
+        mesher->AddRegionPoint(regionPoints[i],
+          regionPoints[i + 1],
+          regionPoints[i + 2],
+          regionPoints[i + 3],
+          i / 4 < regionMaxSizes.size() ? regionMaxSizes[i / 4] : 0.0);
       mesher->SetMaximumSteinerPoints(o.maxSteiner);
       mesher->SetCheckInput(o.check);
       vtkNew<ProgressBar> bar;
@@ -134,7 +139,7 @@ int RunMeshWithVtk(const MeshOptions& o)
       summary.field = [mesh](const char* name) { return FieldValue(mesh, name); };
       summary.histogram = HistogramCounts(mesher->GetHistogramOutput());
       summary.seconds = seconds;
-      summary.warnings = readingNotes + mesher->GetLastWarnings();
+      summary.warnings = mesher->GetLastWarnings();
       ReportMesh(o, clock, summary);
       return 0;
     });

@@ -207,10 +207,7 @@ vtkSmartPointer<vtkDataSet> ReadVolumeMesh(const std::string& path)
   Fail(path, "unknown file type '" + ext + "' (use .vtu, .vtk, .node/.ele or .msh)");
 }
 
-vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path,
-  std::string* notes,
-  std::vector<double>* holePoints,
-  std::vector<double>* regionPoints)
+vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path, SurfaceData* lists)
 {
   const std::string ext = LowerExtension(path);
   RequireReadableFile(path);
@@ -221,12 +218,13 @@ vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path,
   }
   if (IsTetGenSurfaceExtension(ext))
   {
-    std::string unused;
-    const SurfaceData data = ReadTetGenSurface(path, notes ? *notes : unused);
-    if (holePoints)
-      *holePoints = data.holePoints;
-    if (regionPoints)
-      *regionPoints = data.regionPoints;
+    const SurfaceData data = ReadTetGenSurface(path);
+    if (lists)
+    {
+      lists->holePoints = data.holePoints;
+      lists->regionPoints = data.regionPoints;
+      lists->regionMaxSizes = data.regionMaxSizes;
+    }
     return PolyDataOf(data);
   }
   if (ext == ".msh")

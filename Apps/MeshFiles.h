@@ -23,13 +23,10 @@ namespace cli
 // Reads a volume mesh. Throws FileError.
 vtkSmartPointer<vtkDataSet> ReadVolumeMesh(const std::string& path);
 
-// Reads a triangulated surface. Throws FileError. `notes`, when given, receives what the file
-// holds but the mesh does not use (SolverSurfaceFiles.h), one line each; `holePoints` TetGen's
-// hole list (3 doubles per point), `regionPoints` its region list (x, y, z, attribute).
-vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path,
-  std::string* notes = nullptr,
-  std::vector<double>* holePoints = nullptr,
-  std::vector<double>* regionPoints = nullptr);
+// Reads a triangulated surface. Throws FileError. `lists`, when given, receives TetGen's hole
+// and region lists (SurfaceData's holePoints, regionPoints, regionMaxSizes; empty for other
+// files).
+vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path, SurfaceData* lists = nullptr);
 
 // Writes an unstructured grid (.vtu or legacy .vtk by extension). Throws FileError.
 // .vtu: raw appended binary, zlib-compressed when `compress`; .vtk: legacy binary.

@@ -62,9 +62,10 @@ options:
   --holes               enclosed shells are holes instead of regions of their own
   --hole X,Y,Z          remove the region containing the point (X,Y,Z), as a hole in
                         TetGen's hole list (repeatable; added to a .smesh/.poly's list)
-  --region X,Y,Z,A      give the region containing (X,Y,Z) the attribute A, as TetGen's
+  --region X,Y,Z,A[,H]  give the region containing (X,Y,Z) the attribute A, as TetGen's
                         region list with -A: a RegionAttribute cell array (repeatable;
-                        added to a .smesh/.poly's list; other regions: largest A + 1, ...)
+                        added to a .smesh/.poly's list; other regions: largest A + 1, ...);
+                        H > 0 bounds the size there (TetGen's region volume bound)
   --max-steiner N       budget of recovery Steiner points (default 100 + 4 per triangle)
   --time-limit S        stop with an error after S seconds (default: no limit)
   --memory-limit MB     refuse a size field whose mesh is estimated above MB megabytes
@@ -191,30 +192,39 @@ int ParseMeshOptions(int argc, char* argv[], MeshOptions& o)
     }
     else if ((arg == "--hole" || arg == "--region") && hasValue)
     {
-      // --hole X,Y,Z; --region X,Y,Z,ATTRIBUTE.
+      // --hole X,Y,Z; --region X,Y,Z,ATTRIBUTE[,MAXSIZE].
       const bool region = arg == "--region";
-      const int count = region ? 4 : 3;
+      const int most = region ? 5 : 3, fewest = region ? 4 : 3;
       const char* text = argv[++i];
-      double x[4];
+      double x[5] = { 0, 0, 0, 0, 0 };
       const char* at = text;
       char* end = nullptr;
       bool ok = true;
-      for (int k = 0; k < count && ok; ++k)
+      int count = 0;
+      while (ok && count < most)
       {
-        x[k] = std::strtod(at, &end);
-        ok = end != at && std::isfinite(x[k]) && *end == (k < count - 1 ? ',' : '\0');
+        x[count] = std::strtod(at, &end);
+        ok = end != at && std::isfinite(x[count]);
+        ++count;
+        if (!ok || *end == '\0')
+          break;
+        ok = *end == ',' && count < most;
         at = end + 1;
       }
+      ok = ok && *end == '\0' && count >= fewest && (!region || x[4] >= 0);
       if (!ok)
       {
         std::fprintf(stderr,
-          region ? "tetmesher mesh: --region wants X,Y,Z,ATTRIBUTE, four finite numbers, not '%s'\n"
+          region ? "tetmesher mesh: --region wants X,Y,Z,ATTRIBUTE or X,Y,Z,ATTRIBUTE,MAXSIZE "
+                   "(finite numbers, MAXSIZE >= 0), not '%s'\n"
                  : "tetmesher mesh: --hole wants a point X,Y,Z of three finite numbers, not '%s'\n",
           text);
         return 2;
       }
       std::vector<double>& list = region ? o.regionPoints : o.holePoints;
-      list.insert(list.end(), x, x + count);
+      list.insert(list.end(), x, x + fewest);
+      if (region)
+        o.regionMaxSizes.push_back(x[4]);
     }
     else if (arg == "--max-steiner" && i + 1 < argc)
     {

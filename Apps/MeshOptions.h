@@ -25,8 +25,9 @@ struct MeshOptions
   double timeLimit = 0, memoryLimit = 0, dihedralTarget = 25, size = 0, sizeScale = 1, minSize = 0,
          maxSize = 0, gradation = 1.5, qualityTarget = 0.35;
   std::string sizeArray, background, backgroundArray = "h";
-  std::vector<double> holePoints;   // --hole X,Y,Z, 3 per point, in the order given
-  std::vector<double> regionPoints; // --region X,Y,Z,A, 4 per point, in the order given
+  std::vector<double> holePoints;     // --hole X,Y,Z, 3 per point, in the order given
+  std::vector<double> regionPoints;   // --region X,Y,Z,A[,H]: X,Y,Z,A, 4 per point, in order
+  std::vector<double> regionMaxSizes; // ... and H (0 when not given), 1 per point
 };
 
 // Parses the arguments after `mesh`. Returns -1 when the command should run, else the exit

@@ -127,11 +127,8 @@ void AddFacetWithoutHoles(TokenFile& file,
 }
 
 // Parts 3 and 4 of .smesh and .poly: the hole list (into surface.holePoints) and the region
-// list (into surface.regionPoints; volume bounds noted). Both may be missing at the end.
-void ReadHolesAndRegions(TokenFile& file,
-  std::istringstream& line,
-  SurfaceData& surface,
-  std::string& notes)
+// list (into surface.regionPoints and regionMaxSizes). Both may be missing at the end.
+void ReadHolesAndRegions(TokenFile& file, std::istringstream& line, SurfaceData& surface)
 {
   long holes = 0;
   if (!file.NextLine(line))
@@ -154,19 +151,22 @@ void ReadHolesAndRegions(TokenFile& file,
   if (!(line >> regions) || regions < 0)
     file.Fail("expected the region list's count");
   surface.regionPoints.reserve(4 * ReserveBound(regions));
-  bool volumeBounds = false;
   for (long r = 0; r < regions; ++r)
   {
     long number;
-    double x, y, z, attribute, volume;
+    double x, y, z, attribute, volume = 0;
     if (!file.NextLine(line) || !(line >> number >> x >> y >> z >> attribute))
       file.Fail("expected region " + std::to_string(r) + " of " + std::to_string(regions) +
         " as 'number x y z attribute [volume bound]'");
-    volumeBounds = volumeBounds || static_cast<bool>(line >> volume);
+    if (!(line >> volume))
+      volume = 0;
+    if (!std::isfinite(volume))
+      file.Fail("region " + std::to_string(r) + ": the volume bound is not a finite number");
     surface.regionPoints.insert(surface.regionPoints.end(), { x, y, z, attribute });
+    // A volume bound V (> 0; TetGen's -a per region) as the edge of the regular tet of volume
+    // V, the size whose tets have that volume: h = (6 sqrt(2) V)^(1/3).
+    surface.regionMaxSizes.push_back(volume > 0 ? std::cbrt(6 * std::sqrt(2.0) * volume) : 0.0);
   }
-  if (volumeBounds)
-    notes += "the region list's volume bounds are not used (give the size field instead)\n";
 }
 
 } // namespace
@@ -180,7 +180,7 @@ long ReadTetGenNodeFile(const std::string& nodePath, SurfaceData& surface)
   return ReadTetGenPoints(file, line, count, surface);
 }
 
-SurfaceData ReadTetGenSurface(const std::string& path, std::string& notes)
+SurfaceData ReadTetGenSurface(const std::string& path)
 {
   const std::string ext = LowerExtension(path);
   RequireReadableFile(path);
@@ -257,7 +257,7 @@ SurfaceData ReadTetGenSurface(const std::string& path, std::string& notes)
     }
   }
   if (ext != ".face")
-    ReadHolesAndRegions(file, line, surface, notes);
+    ReadHolesAndRegions(file, line, surface);
   return surface;
 }
 

@@ -6,9 +6,10 @@
 // Point ids are the files' points in their order (every point, used by a facet or not, as
 // TetGen meshes them); input cell ids count the polygons read, in file order (TetGen: the
 // facets, or the polygons of .poly facets; Gmsh: its triangles and quadrangles). TetGen's
-// hole points go to SurfaceData::holePoints (the mesher removes their regions). What the
-// mesh cannot honour is refused by name rather than dropped: facets with holes or inner
-// segments, Gmsh's curved (second-order) elements, binary files.
+// hole points go to SurfaceData::holePoints (the mesher removes their regions), its region
+// list to regionPoints and regionMaxSizes. What the mesh cannot honour is refused by name
+// rather than dropped: facets with inner segments or points, polygons nested two deep, Gmsh's
+// curved (second-order) elements, binary files.
 #pragma once
 
 #include "SurfaceFiles.h"
@@ -29,9 +30,9 @@ long ReadTetGenNodeFile(const std::string& nodePath, SurfaceData& surface);
 
 // TetGen's .smesh, .poly or .face, taking the points from NAME.node when the file lists none
 // (.face always). The point numbering starts at the first point's number (0 or 1), as
-// TetGen's does. `notes` receives what was read but not used (a region list, markers are
-// kept out silently), one line each. Throws FileError naming the file, line and item.
-SurfaceData ReadTetGenSurface(const std::string& path, std::string& notes);
+// TetGen's does; its hole and region lists go to SurfaceData's (markers are not used).
+// Throws FileError naming the file, line and item.
+SurfaceData ReadTetGenSurface(const std::string& path);
 
 // The triangles (element type 2) and quadrangles (type 3) of a Gmsh ASCII .msh file, format
 // 2.2 or 4.1, with every node in file order; points, lines and volume elements are skipped.

@@ -76,8 +76,9 @@ struct SurfaceData
   std::int64_t lineCells = 0;
   std::int64_t stripCells = 0;
   std::vector<PointArray> pointArrays;
-  std::vector<double> holePoints;   // TetGen's hole list (3 per point): regions to remove
-  std::vector<double> regionPoints; // TetGen's region list (x, y, z, attribute per point)
+  std::vector<double> holePoints;     // TetGen's hole list (3 per point): regions to remove
+  std::vector<double> regionPoints;   // TetGen's region list (x, y, z, attribute per point)
+  std::vector<double> regionMaxSizes; // its volume bounds as sizes (1 per point; 0: none)
 
   std::int64_t PointCount() const { return static_cast<std::int64_t>(points.size() / 3); }
   std::int64_t PolygonCount() const

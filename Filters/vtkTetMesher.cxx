@@ -287,7 +287,13 @@ void vtkTetMesher::AddHolePoint(double x, double y, double z)
 
 void vtkTetMesher::AddRegionPoint(double x, double y, double z, double attribute)
 {
+  this->AddRegionPoint(x, y, z, attribute, 0.0);
+}
+
+void vtkTetMesher::AddRegionPoint(double x, double y, double z, double attribute, double maxSize)
+{
   this->RegionPoints.insert(this->RegionPoints.end(), { x, y, z, attribute });
+  this->RegionMaxSizes.push_back(maxSize);
   this->Modified();
 }
 
@@ -296,6 +302,7 @@ void vtkTetMesher::RemoveAllRegionPoints()
   if (!this->RegionPoints.empty())
   {
     this->RegionPoints.clear();
+    this->RegionMaxSizes.clear();
     this->Modified();
   }
 }
@@ -528,6 +535,7 @@ int vtkTetMesher::RequestData(vtkInformation*,
   job.triangleIdsAreNotCellIds = firstPolyId > 0 || triangulatedPolygons > 0 || stripCount > 0;
   job.triangulatedPolygons = static_cast<double>(triangulatedPolygons);
   job.regionPoints = this->RegionPoints;
+  job.regionMaxSizes = this->RegionMaxSizes;
   if (this->HolePoints)
     for (vtkIdType i = 0; i < this->HolePoints->GetNumberOfPoints(); ++i)
     {

@@ -94,9 +94,12 @@ public:
    * has a cell array `RegionAttribute` (doubles): each region's tets take the attribute of the
    * first region point in it, regions without one the largest given attribute + 1, + 2, ...
    * in RegionId order. A point outside the surface, on it or in a removed region fails the run
-   * naming the point. RegionId (tetmesher's own numbering) stays as it is.
+   * naming the point. RegionId (tetmesher's own numbering) stays as it is. `maxSize` > 0 also
+   * bounds h in that region (TetGen's volume bound per region; when refining), as MaxSize
+   * bounds it everywhere.
    */
   void AddRegionPoint(double x, double y, double z, double attribute);
+  void AddRegionPoint(double x, double y, double z, double attribute, double maxSize);
   void RemoveAllRegionPoints();
   int GetNumberOfRegionPoints();
   ///@}
@@ -349,7 +352,8 @@ protected:
   std::string StageTimings;
 
   vtkPoints* HolePoints = nullptr;
-  std::vector<double> RegionPoints; // 4 per point: x, y, z, attribute
+  std::vector<double> RegionPoints;   // 4 per point: x, y, z, attribute
+  std::vector<double> RegionMaxSizes; // 1 per point (0: none)
 
 private:
   vtkTetMesher(const vtkTetMesher&) = delete;

@@ -779,6 +779,34 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   }
   for (double& value : h)
     value = scaleAndClampSize(value, sizeOptions);
+  // The region list's bounds (options.regionMaxSize): per tet by its region, and at each
+  // initial vertex the smallest of its tets' (before gradation, which carries them on).
+  constexpr double kNoCap = std::numeric_limits<double>::infinity();
+  const bool regionCaps = std::any_of(
+    options.regionMaxSize.begin(), options.regionMaxSize.end(), [](double b) { return b > 0; });
+  auto regionCap = [&](TetId t)
+  {
+    const std::int32_t r = region[static_cast<std::size_t>(t)];
+    if (!regionCaps || r < 0 || static_cast<std::size_t>(r) >= options.regionMaxSize.size())
+      return kNoCap;
+    const double b = options.regionMaxSize[static_cast<std::size_t>(r)];
+    return b > 0 ? b : kNoCap;
+  };
+  std::vector<double> vertexCap;
+  if (regionCaps)
+  {
+    vertexCap.assign(static_cast<std::size_t>(initialCount), kNoCap);
+    for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+      if (!mesh.isDeleted(t))
+        for (int i = 0; i < 4; ++i)
+        {
+          double& cap = vertexCap[static_cast<std::size_t>(mesh.vertex(t, i))];
+          cap = std::min(cap, regionCap(t));
+        }
+    for (VertexId v = 0; v < initialCount; ++v)
+      h[static_cast<std::size_t>(v)] =
+        std::min(h[static_cast<std::size_t>(v)], vertexCap[static_cast<std::size_t>(v)]);
+  }
   if (sizeOptions.gradation > 1)
     limitGradation(mesh.coords.data(),
       initialCount,
@@ -869,13 +897,14 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     options.maxEdgeRatio);
   const BoundarySizeCeiling sizeCeiling =
     makeBoundarySizeCeiling(mesh, surface, sizeOptions.gradation, options.ceilingRatio);
-  // hp raised to the floor at p and lowered to the ceiling, within the user's clamps (the
-  // ceiling wins where both apply: the smaller feature decides).
-  auto boundToSurface = [&](const double* p, double hp)
+  // hp raised to the floor at p and lowered to the ceiling, within the user's clamps and the
+  // region's cap (the ceiling wins where both apply: the smaller feature decides).
+  auto boundToSurface = [&](const double* p, double hp, double cap)
   {
+    hp = std::min(hp, cap);
     if (!sizeFloor.empty())
     {
-      double f = sizeFloor.at(p, hp);
+      double f = std::min(sizeFloor.at(p, hp), cap);
       if (sizeOptions.maxSize > 0)
         f = std::min(f, sizeOptions.maxSize);
       hp = std::max(hp, f);
@@ -885,7 +914,8 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     return hp;
   };
   for (VertexId v = 0; v < initialCount; ++v)
-    h[v] = boundToSurface(mesh.point(v), h[v]);
+    h[v] = boundToSurface(
+      mesh.point(v), h[v], regionCaps ? vertexCap[static_cast<std::size_t>(v)] : kNoCap);
   double minH = std::numeric_limits<double>::max();
   for (VertexId v = 0; v < initialCount; ++v)
     minH = std::min({ minH, h[v], wanted[v] });
@@ -989,7 +1019,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     {
       hp = background(p);
       hp = hp > 0 && std::isfinite(hp) ? scaleAndClampSize(hp, sizeOptions) : fallback;
-      return boundToSurface(p, hp);
+      return boundToSurface(p, hp, regionCap(container));
     }
     const double* corners[4];
     double hc[4];
@@ -1004,7 +1034,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       hp = std::max(hp, sizeOptions.minSize);
     if (sizeOptions.maxSize > 0)
       hp = std::min(hp, sizeOptions.maxSize);
-    return boundToSurface(p, hp);
+    return boundToSurface(p, hp, regionCap(container));
   };
   // Inserts p (in `container`, of region r) with size hp unless a vertex or a constrained
   // face is too close or the kernel refuses it. Returns a tet of the new vertex, or -1.
@@ -1576,7 +1606,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
                     hp = background(p);
                     if (!(hp > 0) || !std::isfinite(hp))
                       continue;
-                    hp = boundToSurface(p, scaleAndClampSize(hp, sizeOptions));
+                    hp = boundToSurface(p, scaleAndClampSize(hp, sizeOptions), regionCap(t));
                     // One lattice only with a background field: where it matches.
                     if (std::fabs(std::log(hp / a * options.latticeSpacing)) > 0.5 * logRatio)
                       continue;
@@ -1588,7 +1618,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
                       hp = std::max(hp, sizeOptions.minSize);
                     if (sizeOptions.maxSize > 0)
                       hp = std::min(hp, sizeOptions.maxSize);
-                    hp = boundToSurface(p, hp);
+                    hp = boundToSurface(p, hp, regionCap(t));
                     if (levelOfSize(hp) != level)
                       continue;
                   }

@@ -192,6 +192,7 @@ MesherResult meshSurface(const double* points,
   regionOptions.enclosedShellsAreHoles = options.enclosedShellsAreHoles;
   regionOptions.holePoints = options.holePoints;
   regionOptions.regionPoints = options.regionPoints;
+  regionOptions.regionMaxSizes = options.regionMaxSizes;
   if (options.removeSteinerPoints && !recovery.steinerVertices.empty())
   {
     // Steiner points outside every region go with the exterior tets (stage 3), and removing
@@ -230,6 +231,7 @@ MesherResult meshSurface(const double* points,
   }
   result.regionCount = regions.regionCount;
   result.regionAttribute = regions.regionAttribute;
+  result.regionMaxSize = regions.regionMaxSize;
   if (options.removeFlatTets)
   {
     const auto flatStart = std::chrono::steady_clock::now();

@@ -29,6 +29,7 @@ struct MesherOptions
   // TetGen's region list (4 doubles per point: x, y, z, attribute; Regions.h): the result's
   // regionAttribute. A point outside the surface, on it or in a hole is the run's error.
   std::vector<double> regionPoints;
+  std::vector<double> regionMaxSizes; // per region point, its region's max size (<= 0: none)
   // Budget of recovery Steiner points; -1: 100 + 4 per input triangle. An item still missing
   // after 64 Steiner points near it also ends the run (error naming it).
   int maxSteinerPoints = -1;
@@ -68,6 +69,7 @@ struct MesherResult
   int steinerPoints = 0;                     // points in the output beyond the input points
   int regionCount = 0;
   std::vector<double> regionAttribute; // per region, from regionPoints; empty without them
+  std::vector<double> regionMaxSize;   // per region, from regionMaxSizes (0: none); may be empty
   int flips23 = 0;
   int edgeRemovals = 0;
   int cavityCones = 0;    // missing edges recovered by refilling their cavity (CavityCone.h)

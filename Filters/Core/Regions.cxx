@@ -193,8 +193,11 @@ RegionResult classifyRegions(const TetMesh& mesh, const RegionOptions& options)
       const std::int32_t c = componentOfPoint(mesh, component, x, hint);
       std::ostringstream where;
       where << "region point " << i << " (" << x[0] << ", " << x[1] << ", " << x[2] << ")";
+      const double maxSize = i < options.regionMaxSizes.size() ? options.regionMaxSizes[i] : 0.0;
       if (!std::isfinite(attribute))
         result.error = where.str() + " has a non-finite attribute";
+      else if (!std::isfinite(maxSize))
+        result.error = where.str() + " has a non-finite size";
       else if (c == kOnSurface)
         result.error = where.str() + " lies on the input surface";
       else if (c < 0 || touchesBox[c])
@@ -208,6 +211,7 @@ RegionResult classifyRegions(const TetMesh& mesh, const RegionOptions& options)
       if (!result.error.empty())
       {
         result.regionAttribute.clear();
+        result.regionMaxSize.clear();
         return result;
       }
       largest = std::max(largest, attribute);
@@ -216,6 +220,11 @@ RegionResult classifyRegions(const TetMesh& mesh, const RegionOptions& options)
       {
         given[r] = 1;
         result.regionAttribute[r] = attribute;
+        if (maxSize > 0)
+        {
+          result.regionMaxSize.resize(static_cast<std::size_t>(result.regionCount), 0.0);
+          result.regionMaxSize[r] = maxSize;
+        }
       }
     }
     double next = largest;

@@ -28,6 +28,9 @@ struct RegionOptions
   // ... in region order (as TetGen's -A). A point outside the surface, on it or in a hole is
   // an error naming it.
   std::vector<double> regionPoints;
+  // Per region point (empty: none), the largest edge length wanted in its region (TetGen's
+  // volume bound per region, as the edge of the regular tet of that volume); <= 0: none.
+  std::vector<double> regionMaxSizes;
 };
 
 constexpr std::int32_t kExteriorTet = -1;
@@ -46,6 +49,8 @@ struct RegionResult
   int regionCount = 0;
   // Per region, its attribute (RegionOptions::regionPoints); empty without region points.
   std::vector<double> regionAttribute;
+  // Per region, the first region point's max size there (0: none); empty without any.
+  std::vector<double> regionMaxSize;
   std::string error; // a hole or region point outside the surface or on it (or a region point
                      // in a hole); tetRegion is then empty
 };

@@ -59,6 +59,8 @@ struct SurfaceMeshInput
   // TetGen's region list, 4 doubles per point (x, y, z, attribute): the output's
   // mesh.regionAttribute, one value per region (Regions.h).
   std::vector<double> regionPoints;
+  // Per region point (may be empty), the largest edge length wanted in its region (<= 0: none).
+  std::vector<double> regionMaxSizes;
   // The point array of sizes (vtkTetMesher's SizeArrayName), asked for only when refining:
   // fills one value per point, false when the surface has no array of that name.
   std::string sizeArrayName;

@@ -132,11 +132,11 @@ VolumeMeshResult meshVolume(const double* points,
   }
   if (options.refine)
   {
-    result.refinementStats = refineInterior(mesh,
-      size,
-      options.refinement,
-      options.background,
-      subProgress(progress, boundaryShare, refineEnd));
+    RefinementOptions refinement = options.refinement;
+    if (refinement.regionMaxSize.empty())
+      refinement.regionMaxSize = boundary.regionMaxSize; // the region list's bounds
+    result.refinementStats = refineInterior(
+      mesh, size, refinement, options.background, subProgress(progress, boundaryShare, refineEnd));
     if (!result.refinementStats.ok)
     {
       result.error = "interior point creation failed: " + result.refinementStats.error;

@@ -84,6 +84,77 @@ TEST(VolumeMesher, CubeWithConstantSizeKeepsTheBoundaryAndFollowsH)
   EXPECT_EQ(plainBefore, expected);
 }
 
+// TetGen's region list with a volume bound per region, as a max size per region point: the
+// ball inside nested spheres is meshed to its bound (away from its surface, where the size
+// floor grades up to the triangles), the shell around it only near their interface; the
+// boundary stays exact.
+TEST(VolumeMesher, RegionMaxSizeBoundsTheSizeInItsRegion)
+{
+  Surface s = icosphere(3, 1.0);
+  const std::int32_t outer = s.triangleCount();
+  s.append(icosphere(2, 0.5));
+  std::vector<int> sign(static_cast<std::size_t>(s.triangleCount()), 0);
+  std::fill(sign.begin(), sign.begin() + outer, 1);
+  const double cap = 0.05;
+  struct Stats
+  {
+    int ballPoints = 0, shellPoints = 0;
+    double coreShort = 0; // share of the edges within 0.2 of the centre no longer than 1.42 cap
+  };
+  auto run = [&](bool capped)
+  {
+    VolumeMeshOptions options;
+    options.boundary.regionPoints = { 0, 0, 0.01, 1 };
+    options.boundary.regionMaxSizes = { capped ? cap : 0.0 };
+    const VolumeMeshResult v =
+      meshVolume(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), options);
+    EXPECT_TRUE(v.ok) << v.error;
+    EXPECT_EQ(checkMesh(s, asMesherResult(v, s.pointCount()), sign, 2), "");
+    Stats stats;
+    if (!v.ok || v.regionAttribute.size() != 2)
+      return stats;
+    std::vector<int> where(v.points.size() / 3, -1); // region of a new point
+    std::size_t edges = 0, shortEdges = 0;
+    for (std::size_t t = 0; t < v.tets.size() / 4; ++t)
+    {
+      const bool ball = v.regionAttribute[static_cast<std::size_t>(v.regionIds[t])] == 1;
+      for (int i = 0; i < 4; ++i)
+      {
+        const std::int32_t a = v.tets[4 * t + static_cast<std::size_t>(i)];
+        if (a >= s.pointCount())
+          where[static_cast<std::size_t>(a)] = ball ? 1 : 0;
+        for (int j = i + 1; j < 4 && ball; ++j)
+        {
+          const std::int32_t b = v.tets[4 * t + static_cast<std::size_t>(j)];
+          const double* p = &v.points[3 * static_cast<std::size_t>(a)];
+          const double* q = &v.points[3 * static_cast<std::size_t>(b)];
+          if (std::hypot(p[0] + q[0], p[1] + q[1], p[2] + q[2]) > 0.4)
+            continue; // the midpoint is farther than 0.2 from the centre
+          ++edges;
+          shortEdges += std::hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]) <= 1.42 * cap;
+        }
+      }
+    }
+    for (int w : where)
+      (w == 1 ? stats.ballPoints : stats.shellPoints) += w >= 0;
+    stats.coreShort = edges ? static_cast<double>(shortEdges) / static_cast<double>(edges) : 0;
+    std::printf("region cap %s: %d points in the ball, %d in the shell, %.1f%% of the core's "
+                "edges <= 1.42 cap\n",
+      capped ? "on" : "off",
+      stats.ballPoints,
+      stats.shellPoints,
+      100 * stats.coreShort);
+    return stats;
+  };
+  const Stats free = run(false), capped = run(true);
+  EXPECT_GE(capped.coreShort, 0.9);
+  EXPECT_LT(free.coreShort, 0.5);
+  EXPECT_GT(capped.ballPoints, 4 * free.ballPoints);
+  // The shell grades up from the ball's size at their interface (its vertices take the
+  // smaller bound), not the ball's size throughout: that would be 50x its points.
+  EXPECT_LT(capped.shellPoints, 4 * free.shellPoints);
+}
+
 // The whole pipeline on a surface with unused points on it (left out of the mesh) and inside
 // it (a vertex of the mesh): the boundary exact, the points on the surface in no tet.
 TEST(VolumeMesher, UnusedPointsOnTheSurfaceStayOutOfTheMesh)

@@ -370,7 +370,7 @@ try:
     for value in ("0,0", "0,0,0,", "a,0,0", "0,0,nan", "0;0;0"):
         code, text = run(["mesh", stem + ".off", "-o", stem + "-x.vtu", "-q", "--hole", value])
         check(code == 2 and "--hole wants a point X,Y,Z" in text, "--hole %s: exit %d: %s" % (value, code, text))
-    for value in ("0,0,0", "0,0,0,1,", "0,0,0,inf"):
+    for value in ("0,0,0", "0,0,0,1,", "0,0,0,inf", "0,0,0,1,-1", "0,0,0,1,2,3"):
         code, text = run(["mesh", stem + ".off", "-o", stem + "-x.vtu", "-q", "--region", value])
         check(code == 2 and "--region wants X,Y,Z,ATTRIBUTE" in text, "--region %s: exit %d: %s" % (value, code, text))
     for path_flag in ([], ["--with-vtk"]):
@@ -450,9 +450,20 @@ try:
                                   os.path.join(work, "example-ours.ele"), "--boundary-only"] + extra)
                 got = attribute_volumes(os.path.join(work, "example-ours")) if code == 0 else {}
                 check(code == 0 and set(got) == set(expected) and all(got[a] == expected[a] for a in ("10", "20"))
-                      and sorted(got.values()) == sorted(expected.values())
-                      and "the region list's volume bounds are not used" in text,
+                      and sorted(got.values()) == sorted(expected.values()),
                       "example.poly regions %s: exit %d, %s against TetGen's %s: %s" % (extra, code, got, expected, text))
+            # Its volume bounds (0.001 and 0.01) bound the size in their regions when refining:
+            # more tets than with the bounds dropped from the file, and the same on both paths.
+            unbounded = os.path.join(work, "example-unbounded.poly")
+            write(unbounded, rows[:at] + ["0"] + [" ".join(r.split()[:5]) if len(r.split()) == 6 else r
+                                                  for r in rows[at + 3:]])
+            counts = []
+            for source, extra in ((unbounded, []), (os.path.join(work, "example.poly"), []),
+                                  (os.path.join(work, "example.poly"), ["--with-vtk"])):
+                code, text = run(["mesh", source, "-o", os.path.join(work, "example-sized.msh")] + extra)
+                counts.append(len(msh_mesh(os.path.join(work, "example-sized.msh"))[0]) if code == 0 else -1)
+            check(counts[0] > 0 and counts[1] > 2 * counts[0] and counts[1] == counts[2],
+                  "example.poly volume bounds: points without / with / with VTK %s" % counts)
             # In Gmsh's .msh the whole-number attributes are the tets' physical tags.
             code, text = run(["mesh", os.path.join(work, "example.poly"), "-o",
                               os.path.join(work, "example-ours.msh"), "--boundary-only"])

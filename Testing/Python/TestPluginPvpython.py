@@ -87,9 +87,9 @@ for hole_points, regions_expected, volume in (([0.01, 0.02, 0.03], 1, shell_volu
     assert len(set(result_regions.tolist())) == regions_expected, (hole_points, set(result_regions.tolist()))
 print("TetMesher proxy: HolePoints removes the inner ball, and emptied keeps it")
 
-# RegionPoints, TetGen's region list (x y z attribute): a RegionAttribute cell array, the inner
-# ball 5 and the shell 6 (largest + 1); emptied, no such array.
-for region_points, expected in (([0.01, 0.02, 0.03, 5.0], [5.0, 6.0]), ([], None)):
+# RegionPoints, TetGen's region list (x y z attribute maxSize): a RegionAttribute cell array,
+# the inner ball 5 and the shell 6 (largest + 1); emptied, no such array.
+for region_points, expected in (([0.01, 0.02, 0.03, 5.0, 0.0], [5.0, 6.0]), ([], None)):
     holed.RegionPoints = region_points
     holed.UpdatePipeline()
     result = servermanager.Fetch(holed, arg1=None, arg2=None, idx=0)

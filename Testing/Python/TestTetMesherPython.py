@@ -174,6 +174,17 @@ regioned.Update()
 if regioned.GetOutput().GetCellData().GetArray("RegionAttribute") is not None or \
         regioned.GetNumberOfRegionPoints() != 0:
     failures.append("RemoveAllRegionPoints: RegionAttribute is still there")
+# With a max size (TetGen's region volume bound), refinement makes the ball finer.
+regioned.SetRefine(True)
+regioned.AddRegionPoint(0.01, 0.02, 0.03, 5.0)
+regioned.Update()
+plain_cells = regioned.GetOutput().GetNumberOfCells()
+regioned.RemoveAllRegionPoints()
+regioned.AddRegionPoint(0.01, 0.02, 0.03, 5.0, 0.05)
+regioned.Update()
+if not regioned.GetOutput().GetNumberOfCells() > 4 * plain_cells:
+    failures.append(f"AddRegionPoint with a max size: {regioned.GetOutput().GetNumberOfCells()} "
+                    f"tets against {plain_cells} without")
 
 # Triangle strips (vtkStripper's output) are decomposed as vtkTriangleStrip does: the boundary
 # is exactly the strips' triangles (their joints with a repeated point left out), the input
