@@ -158,10 +158,16 @@ void ReadHolesAndRegions(TokenFile& file, std::istringstream& line, SurfaceData&
     if (!file.NextLine(line) || !(line >> number >> x >> y >> z >> attribute))
       file.Fail("expected region " + std::to_string(r) + " of " + std::to_string(regions) +
         " as 'number x y z attribute [volume bound]'");
-    if (!(line >> volume))
-      volume = 0;
-    if (!std::isfinite(volume))
-      file.Fail("region " + std::to_string(r) + ": the volume bound is not a finite number");
+    // The volume bound is optional; given, it must be a finite number.
+    std::string bound;
+    if (line >> bound)
+    {
+      char* end = nullptr;
+      volume = std::strtod(bound.c_str(), &end);
+      if (end == bound.c_str() || *end != '\0' || !std::isfinite(volume))
+        file.Fail("region " + std::to_string(r) + ": the volume bound '" + bound +
+          "' is not a finite number");
+    }
     surface.regionPoints.insert(surface.regionPoints.end(), { x, y, z, attribute });
     // A volume bound V (> 0; TetGen's -a per region) as the edge of the regular tet of volume
     // V, the size whose tets have that volume: h = (6 sqrt(2) V)^(1/3).

@@ -45,11 +45,13 @@ vtkStandardNewMacro(vtkTetMesher);
 namespace
 {
 // The input cells and points named by the diagnosis, for users to see them (ParaView: colour
-// output 2 by DefectKind). Triangles become polygons, lone points vertices; cell data
-// DefectKind (the SurfaceDefect value), DefectRecord (which record), InputCellId; field data
-// DefectSummary (the text of the error).
+// output 2 by DefectKind). Triangles become their input polygons (a triangle of a strip
+// itself: its cell is the whole strip), lone points vertices; cell data DefectKind (the
+// SurfaceDefect value), DefectRecord (which record), InputCellId; field data DefectSummary
+// (the text of the error).
 void FillDefects(const tetmesher::SurfaceDiagnosis& diagnosis,
   vtkPolyData* input,
+  const std::vector<std::int32_t>& triangles,
   const std::vector<std::int64_t>& cellOfTriangle,
   vtkPolyData* defects)
 {
@@ -76,8 +78,18 @@ void FillDefects(const tetmesher::SurfaceDiagnosis& diagnosis,
           continue;
         }
         const vtkIdType cell = cellOfTriangle[static_cast<std::size_t>(tri)];
-        input->GetCellPoints(cell, ids);
-        polys->InsertNextCell(ids);
+        if (input->GetCellType(cell) == VTK_TRIANGLE_STRIP)
+        {
+          const vtkIdType corners[3] = { triangles[3 * static_cast<std::size_t>(tri)],
+            triangles[3 * static_cast<std::size_t>(tri) + 1],
+            triangles[3 * static_cast<std::size_t>(tri) + 2] };
+          polys->InsertNextCell(3, corners);
+        }
+        else
+        {
+          input->GetCellPoints(cell, ids);
+          polys->InsertNextCell(ids);
+        }
         polyKind->InsertNextValue(kind);
         polyRecord->InsertNextValue(static_cast<int>(r));
         polyCell->InsertNextValue(cell);
@@ -581,7 +593,7 @@ int vtkTetMesher::RequestData(vtkInformation*,
   this->LastWarnings = result.warnings;
   if (this->CheckInput)
   {
-    FillDefects(result.diagnosis, input, cellOfTriangle, defects);
+    FillDefects(result.diagnosis, input, triangles, cellOfTriangle, defects);
   }
   if (!result.ok)
   {

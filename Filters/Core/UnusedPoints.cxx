@@ -70,22 +70,26 @@ std::vector<LeftOutPoint> unusedPointsLeftOut(const double* points,
   if (unused.empty())
     return found;
 
-  // On the surface: the triangles near each unused point, from a grid of their boxes.
-  std::vector<TriangleBoxGrid::Box> boxes(usable.size(), { 0, 0, 0, 0, 0, 0 });
+  // On the surface: the triangles near each unused point, from a grid of the usable ones'
+  // boxes (an unusable one's box could stretch the grid across the model).
+  std::vector<std::int32_t> usableIds;
+  std::vector<TriangleBoxGrid::Box> boxes;
   for (std::int32_t t = 0; t < triangleCount; ++t)
   {
     if (!usable[static_cast<std::size_t>(t)])
-      continue; // its box is never asked for: usable is checked first
+      continue;
     const std::int32_t* v = corners(t);
-    TriangleBoxGrid::Box& box = boxes[static_cast<std::size_t>(t)];
+    TriangleBoxGrid::Box box;
     for (int k = 0; k < 3; ++k)
     {
       box[k] = std::min({ point(v[0])[k], point(v[1])[k], point(v[2])[k] });
       box[k + 3] = std::max({ point(v[0])[k], point(v[1])[k], point(v[2])[k] });
     }
+    usableIds.push_back(t);
+    boxes.push_back(box);
   }
   std::vector<char> onSurface(unused.size(), 0);
-  if (triangleCount > 0)
+  if (!boxes.empty())
   {
     const TriangleBoxGrid grid(boxes);
     std::vector<std::int32_t> near;
@@ -93,10 +97,9 @@ std::vector<LeftOutPoint> unusedPointsLeftOut(const double* points,
     {
       const double* x = point(unused[i]);
       grid.near({ x[0], x[1], x[2], x[0], x[1], x[2] }, 0.0, near);
-      for (std::int32_t t : near)
+      for (std::int32_t k : near) // increasing, so the lowest triangle first
       {
-        if (!usable[static_cast<std::size_t>(t)])
-          continue;
+        const std::int32_t t = usableIds[static_cast<std::size_t>(k)];
         const std::int32_t* v = corners(t);
         if (!inClosedTriangle(point(v[0]), point(v[1]), point(v[2]), x))
           continue;

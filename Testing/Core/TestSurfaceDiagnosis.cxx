@@ -603,9 +603,6 @@ TEST(SurfaceDiagnosis, UnusedPointIsOnlyAWarning)
   EXPECT_TRUE(d.ok());
 }
 
-// Unused points on the surface (exactly in a triangle or on an edge) are named apart, with the
-// lowest triangle that holds them; those inside, beside the surface in its plane, a hair off
-// it, or equal to a corner (a duplicate) are not.
 // Unused points on the surface (exactly in a triangle, on an edge or at a corner) and copies of
 // an unused point are left out of the mesh, named apart with the lowest triangle that holds
 // them or the point they equal; those inside, beside the surface in its plane or a hair off it

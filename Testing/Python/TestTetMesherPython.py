@@ -221,6 +221,34 @@ else:
         failures.append(f"strips: {problems}, {len(strip_triangles)} triangles from "
                         f"{stripped.GetNumberOfStrips()} strips, input cells named {len(used)}")
 
+# Cell ids with strips among other cells: a vertex (cell 0), a triangle (cell 1) and a strip
+# (cell 2) with a joint of a repeated point at its end make a tetrahedron: one tet, its
+# bottom face from cell 1, its other three from cell 2, the joint left out.
+from vtkmodules.vtkCommonCore import vtkIdList  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData  # noqa: E402
+mixed = vtkPolyData()
+corners = vtkPoints()
+for x in ((0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)):
+    corners.InsertNextPoint(*x)
+mixed.SetPoints(corners)
+for kind, ids in (("SetVerts", [0]), ("SetPolys", [0, 2, 1]), ("SetStrips", [0, 1, 3, 2, 0, 0])):
+    cells = vtkCellArray()
+    id_list = vtkIdList()
+    for i in ids:
+        id_list.InsertNextId(i)
+    cells.InsertNextCell(id_list)
+    getattr(mixed, kind)(cells)
+one = vtkTetMesher()
+one.SetInputData(mixed)
+one.SetRefine(False)
+one.SetOptimize(False)
+one_errors = collect_errors(one)
+one.Update()
+faces = one.GetOutput().GetCellData().GetArray("InputFaceIds")
+got = sorted(int(faces.GetComponent(0, k)) for k in range(4)) if faces and one.GetOutput().GetNumberOfCells() == 1 else None
+if one_errors or got != [1, 2, 2, 2]:
+    failures.append(f"a vertex, a triangle and a strip: errors {one_errors}, input cells of the faces {got}")
+
 # A CAD-like part whose recovery needs Steiner points (35-70): none may end up on a face.
 check("gear.vtp", 1, Refine=False, Optimize=False)
 
