@@ -46,8 +46,8 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
   // sources and the Delaunay of the surface points (turbine: 21 of its 430 ms). Its verdict
   // still comes first: every error path waits for it, and a defect it finds is the error.
   const std::string idNote = input.triangleIdsAreNotCellIds
-    ? "\n(triangle ids count the triangles of the input's polygons in order; input cell ids "
-      "differ when the input has vertices, lines or polygons)"
+    ? "\n(triangle ids count the triangles of the input's polygons and strips in order; input "
+      "cell ids differ when the input has vertices, lines, polygons or strips)"
     : "";
   double diagnosisSeconds = 0;
   std::exception_ptr diagnosisFailure;

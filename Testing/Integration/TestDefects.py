@@ -19,8 +19,8 @@ import sys
 import tempfile
 
 PREFIX = "the input surface cannot be meshed:\n"
-POLYGON_NOTE = ("\n(triangle ids count the triangles of the input's polygons in order; input "
-                "cell ids differ when the input has vertices, lines or polygons)")
+POLYGON_NOTE = ("\n(triangle ids count the triangles of the input's polygons and strips in order; "
+                "input cell ids differ when the input has vertices, lines, polygons or strips)")
 INTERSECTING_CUBE_PAIRS = [(2, 16), (2, 17), (2, 22), (3, 17), (3, 22), (3, 23), (6, 12),
                            (6, 13), (6, 16), (7, 12), (7, 16), (7, 17), (8, 13), (8, 22),
                            (9, 12), (9, 13), (9, 22), (9, 23)]

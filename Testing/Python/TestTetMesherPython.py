@@ -249,6 +249,27 @@ got = sorted(int(faces.GetComponent(0, k)) for k in range(4)) if faces and one.G
 if one_errors or got != [1, 2, 2, 2]:
     failures.append(f"a vertex, a triangle and a strip: errors {one_errors}, input cells of the faces {got}")
 
+# The defects output draws a flagged triangle of a strip, not the whole strip: the stripped
+# torus less its first strip is open, and every polygon of output 2 is a triangle.
+open_strips = vtkPolyData()
+open_strips.SetPoints(stripped.GetPoints())
+kept_strips = vtkCellArray()
+strip_ids = vtkIdList()
+for c in range(1, stripped.GetNumberOfStrips()):
+    stripped.GetCellPoints(c, strip_ids)
+    kept_strips.InsertNextCell(strip_ids)
+open_strips.SetStrips(kept_strips)
+opened = vtkTetMesher()
+opened.SetInputData(open_strips)
+opened.SetRefine(False)
+open_errors = collect_errors(opened)
+opened.Update()
+open_defects = opened.GetDefectsOutput()
+sizes = {open_defects.GetCell(c).GetNumberOfPoints() for c in range(open_defects.GetNumberOfCells())
+         if open_defects.GetCellType(c) != 1}  # VTK_VERTEX
+if not any("open edges" in e for e in open_errors) or sizes != {3}:
+    failures.append(f"an open strip surface: errors {open_errors}, defect polygon sizes {sizes}")
+
 # A CAD-like part whose recovery needs Steiner points (35-70): none may end up on a face.
 check("gear.vtp", 1, Refine=False, Optimize=False)
 
