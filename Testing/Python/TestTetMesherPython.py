@@ -32,6 +32,16 @@ def collect_errors(mesher):
     return errors
 
 
+def boundary_mesher(polydata):
+    """A mesher of `polydata`'s boundary mesh alone (no refinement, no optimisation), and the
+    list its error messages go to."""
+    mesher = vtkTetMesher()
+    mesher.SetInputData(polydata)
+    mesher.SetRefine(False)
+    mesher.SetOptimize(False)
+    return mesher, collect_errors(mesher)
+
+
 def mesh(points, triangles, **properties):
     mesher = vtkTetMesher()
     errors = collect_errors(mesher)
@@ -118,11 +128,7 @@ if not any("hole point 0 (3, 0, 0) is outside the input surface" in e for e in h
     failures.append(f"a hole point outside the surface: {hole_errors}")
 # AddHolePoint / RemoveAllHolePoints (the plugin's HolePoints property): the list grows as a
 # copy in doubles (the caller's vtkPoints never changes), and each change re-executes.
-adder = vtkTetMesher()
-adder.SetInputData(to_polydata(*read_surface(os.path.join(data, "nested_spheres.vtp"))))
-adder.SetRefine(False)
-adder.SetOptimize(False)
-add_errors = collect_errors(adder)
+adder, add_errors = boundary_mesher(to_polydata(*read_surface(os.path.join(data, "nested_spheres.vtp"))))
 adder.SetHolePoints(hole)
 adder.Update()
 with_hole = adder.GetOutput().GetNumberOfCells()
@@ -145,11 +151,7 @@ if not (named and without > with_hole == added and hole.GetNumberOfPoints() == 1
 # others 6 (largest + 1); without region points no such array; a point outside is named.
 nested_points, nested_triangles = read_surface(os.path.join(data, "nested_spheres.vtp"))
 inner_volume = min(enclosed_volume(nested_points, nested_triangles[sh]) for sh in shells(nested_triangles))
-regioned = vtkTetMesher()
-regioned.SetInputData(to_polydata(nested_points, nested_triangles))
-regioned.SetRefine(False)
-regioned.SetOptimize(False)
-region_errors = collect_errors(regioned)
+regioned, region_errors = boundary_mesher(to_polydata(nested_points, nested_triangles))
 regioned.AddRegionPoint(0.01, 0.02, 0.03, 5.0)
 regioned.Update()
 grid = regioned.GetOutput()
@@ -199,11 +201,7 @@ expanded = vtkTriangleFilter()
 expanded.SetInputData(stripped)
 expanded.Update()
 strip_triangles = vtk_to_numpy(expanded.GetOutput().GetPolys().GetConnectivityArray()).reshape(-1, 3)
-striped = vtkTetMesher()
-striped.SetInputData(stripped)
-striped.SetRefine(False)
-striped.SetOptimize(False)
-strip_errors = collect_errors(striped)
+striped, strip_errors = boundary_mesher(stripped)
 striped.Update()
 if stripped.GetNumberOfStrips() == 0 or strip_errors or striped.GetLastWarnings():
     # (A strip's every other triangle turned the wrong way would warn of the orientation.)
@@ -238,11 +236,7 @@ for kind, ids in (("SetVerts", [0]), ("SetPolys", [0, 2, 1]), ("SetStrips", [0, 
         id_list.InsertNextId(i)
     cells.InsertNextCell(id_list)
     getattr(mixed, kind)(cells)
-one = vtkTetMesher()
-one.SetInputData(mixed)
-one.SetRefine(False)
-one.SetOptimize(False)
-one_errors = collect_errors(one)
+one, one_errors = boundary_mesher(mixed)
 one.Update()
 faces = one.GetOutput().GetCellData().GetArray("InputFaceIds")
 got = sorted(int(faces.GetComponent(0, k)) for k in range(4)) if faces and one.GetOutput().GetNumberOfCells() == 1 else None
@@ -259,10 +253,7 @@ for c in range(1, stripped.GetNumberOfStrips()):
     stripped.GetCellPoints(c, strip_ids)
     kept_strips.InsertNextCell(strip_ids)
 open_strips.SetStrips(kept_strips)
-opened = vtkTetMesher()
-opened.SetInputData(open_strips)
-opened.SetRefine(False)
-open_errors = collect_errors(opened)
+opened, open_errors = boundary_mesher(open_strips)
 opened.Update()
 open_defects = opened.GetDefectsOutput()
 sizes = {open_defects.GetCell(c).GetNumberOfPoints() for c in range(open_defects.GetNumberOfCells())
