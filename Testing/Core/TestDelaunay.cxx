@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <random>
@@ -68,6 +69,68 @@ TEST(Delaunay, RandomPointsAreExactlyValid)
     TetMesh mesh = randomPoints(n, 42 + n);
     buildAndValidate(mesh);
     expectBoxHull(mesh);
+  }
+}
+
+// Points on the skip list stay vertices of no tet; the rest is the Delaunay of the others,
+// exactly valid, with large rounds in halves (40k points) or not, and the same as a build
+// without the skipped points (the same tets, by coordinates).
+TEST(Delaunay, SkippedPointsAreNotInserted)
+{
+  for (int n : { 2000, 40000 })
+  {
+    TetMesh mesh = randomPoints(n, 11 + n);
+    std::vector<std::uint8_t> skip(static_cast<std::size_t>(n), 0);
+    TetMesh kept;
+    for (VertexId v = 0; v < n; ++v)
+    {
+      skip[static_cast<std::size_t>(v)] = v % 7 == 3;
+      if (v % 7 != 3)
+        kept.addVertex(mesh.point(v)[0], mesh.point(v)[1], mesh.point(v)[2]);
+    }
+    DelaunayOptions options;
+    options.validate = true; // every vertex present but the skipped ones
+    options.boxEnlargement = 1e4;
+    options.skip = skip.data();
+    const DelaunayResult r = buildDelaunay(mesh, options);
+    ASSERT_TRUE(r.ok) << r.error;
+    std::vector<char> used(static_cast<std::size_t>(mesh.vertexCount()), 0);
+    for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+      if (!mesh.isDeleted(t))
+        for (int i = 0; i < 4; ++i)
+          used[static_cast<std::size_t>(mesh.vertex(t, i))] = 1;
+    for (VertexId v = 0; v < n; ++v)
+      EXPECT_EQ(used[static_cast<std::size_t>(v)] != 0, v % 7 != 3) << v;
+    // The same triangulation as the kept points alone: their tets (those without a box
+    // corner; the box far away, so that they are the Delaunay of the points, whatever the
+    // skipped points do to the bounding box), compared by coordinates.
+    DelaunayOptions plain;
+    plain.boxEnlargement = 1e4;
+    const VertexId keptCount = kept.vertexCount();
+    ASSERT_TRUE(buildDelaunay(kept, plain).ok);
+    auto tetsByCoordinates = [](const TetMesh& m, VertexId points)
+    {
+      std::set<std::array<std::array<double, 3>, 4>> out;
+      for (TetId t = 0; t < m.tetCapacity(); ++t)
+      {
+        if (m.isDeleted(t))
+          continue;
+        std::array<std::array<double, 3>, 4> tet;
+        bool boxCorner = false;
+        for (int i = 0; i < 4; ++i)
+        {
+          const VertexId v = m.vertex(t, i);
+          boxCorner = boxCorner || v >= points;
+          tet[static_cast<std::size_t>(i)] = { m.point(v)[0], m.point(v)[1], m.point(v)[2] };
+        }
+        std::sort(tet.begin(), tet.end());
+        if (!boxCorner)
+          out.insert(tet);
+      }
+      return out;
+    };
+    if (tetsByCoordinates(mesh, n) != tetsByCoordinates(kept, keptCount))
+      ADD_FAILURE() << n << " points: the mesh differs from the kept points' own";
   }
 }
 
