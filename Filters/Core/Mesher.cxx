@@ -232,6 +232,7 @@ MesherResult meshSurface(const double* points,
   result.regionCount = regions.regionCount;
   result.regionAttribute = regions.regionAttribute;
   result.regionMaxSize = regions.regionMaxSize;
+  result.regionNotes = regions.regionNotes;
   if (options.removeFlatTets)
   {
     const auto flatStart = std::chrono::steady_clock::now();

@@ -70,6 +70,7 @@ struct MesherResult
   int regionCount = 0;
   std::vector<double> regionAttribute; // per region, from regionPoints; empty without them
   std::vector<double> regionMaxSize;   // per region, from regionMaxSizes (0: none); may be empty
+  std::string regionNotes;             // region points not used (RegionResult::regionNotes)
   int flips23 = 0;
   int edgeRemovals = 0;
   int cavityCones = 0;    // missing edges recovered by refilling their cavity (CavityCone.h)

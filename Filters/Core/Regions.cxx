@@ -183,7 +183,8 @@ RegionResult classifyRegions(const TetMesh& mesh, const RegionOptions& options)
     return result;
   if (!regionPointXyz.empty())
   {
-    std::vector<char> given(static_cast<std::size_t>(result.regionCount), 0);
+    // Per region, 1 + the index of its first region point (0: none).
+    std::vector<std::size_t> given(static_cast<std::size_t>(result.regionCount), 0);
     result.regionAttribute.assign(static_cast<std::size_t>(result.regionCount), 0.0);
     double largest = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; 3 * i < regionPointXyz.size(); ++i)
@@ -218,13 +219,21 @@ RegionResult classifyRegions(const TetMesh& mesh, const RegionOptions& options)
       const auto r = static_cast<std::size_t>(regionOf[c]);
       if (!given[r])
       {
-        given[r] = 1;
+        given[r] = i + 1;
         result.regionAttribute[r] = attribute;
         if (maxSize > 0)
         {
           result.regionMaxSize.resize(static_cast<std::size_t>(result.regionCount), 0.0);
           result.regionMaxSize[r] = maxSize;
         }
+      }
+      else
+      {
+        const double regionSize = r < result.regionMaxSize.size() ? result.regionMaxSize[r] : 0;
+        if (attribute != result.regionAttribute[r] || std::max(maxSize, 0.0) != regionSize)
+          result.regionNotes += where.str() + " lies in the region of region point " +
+            std::to_string(given[r] - 1) +
+            ", whose attribute and size apply there: its own are not used\n";
       }
     }
     double next = largest;

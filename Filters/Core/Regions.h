@@ -51,6 +51,9 @@ struct RegionResult
   std::vector<double> regionAttribute;
   // Per region, the first region point's max size there (0: none); empty without any.
   std::vector<double> regionMaxSize;
+  // A line per later region point whose attribute or size differs from its region's first
+  // point's (it is not used: the first wins), for the warnings.
+  std::string regionNotes;
   std::string error; // a hole or region point outside the surface or on it (or a region point
                      // in a hole); tetRegion is then empty
 };

@@ -234,6 +234,20 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
   const std::string defects = diagnosisVerdict(); // seen by the boundary mesher already
   if (!defects.empty())
     return fail(defects);
+  // What of the region list is not used: later points in a region, sizes without refinement.
+  std::string regionNotes = result.boundaryStats.regionNotes;
+  if (!settings.refine &&
+    std::any_of(
+      input.regionMaxSizes.begin(), input.regionMaxSizes.end(), [](double h) { return h > 0; }))
+    regionNotes += "the region points' max sizes (volume bounds) are not used: no interior points "
+                   "are made (refinement is off)\n";
+  if (!regionNotes.empty())
+  {
+    if (!out.warnings.empty() && out.warnings.back() != '\n')
+      out.warnings += '\n';
+    out.warnings += regionNotes;
+    out.warnings.pop_back(); // as the diagnosis's lines, no newline after the last
+  }
   for (const auto& [stage, seconds] : result.stageSeconds)
   {
     appendStage(out.stageTimings, seconds, stage);

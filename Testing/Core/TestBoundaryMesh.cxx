@@ -223,7 +223,12 @@ TEST(BoundaryMesh, RegionPointsGiveRegionAttributes)
   options.regionPoints = { 0.01, 0.02, 0.03, 7 };
   EXPECT_EQ(attributes(meshAndCheck(s, sign, 2, options)), (std::array<double, 2>{ 7, 8 }));
   options.regionPoints = { 0.75, 0.0, 0.1, 3, 0.01, 0.02, 0.03, 7.5, -0.01, 0, 0, 9 };
-  EXPECT_EQ(attributes(meshAndCheck(s, sign, 2, options)), (std::array<double, 2>{ 7.5, 3 }));
+  const MesherResult three = meshAndCheck(s, sign, 2, options);
+  EXPECT_EQ(attributes(three), (std::array<double, 2>{ 7.5, 3 }));
+  // The third point is not used, and said so.
+  EXPECT_EQ(three.regionNotes,
+    "region point 2 (-0.01, 0, 0) lies in the region of region point 1, whose attribute and "
+    "size apply there: its own are not used\n");
   // Errors name the point.
   const std::vector<std::pair<std::vector<double>, std::string>> cases = {
     { { s.points[0], s.points[1], s.points[2], 1 }, "lies on the input surface" },
