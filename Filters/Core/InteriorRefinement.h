@@ -19,7 +19,8 @@ struct RefinementOptions
 {
   SizeFieldOptions size;
   // Per region id (RegionMesh::region), an upper bound on h there (0: none); may be empty.
-  // Sizes at vertices are bounded by the smallest bound of their tets' regions.
+  // Sizes at vertices are bounded by the smallest bound of their tets' regions. meshVolume
+  // sets it from the region list (MesherResult::regionMaxSize).
   std::vector<double> regionMaxSize;
   // Budget of inserted points; -1: 8 times the estimate of the field (see the .cxx), plus 16
   // per initial vertex (the layers the ceiling asks for next to small faces), plus 10000.

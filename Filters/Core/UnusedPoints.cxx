@@ -51,17 +51,19 @@ std::vector<LeftOutPoint> unusedPointsLeftOut(const double* points,
       predicates::inExactRange(x[2]);
   };
   auto corners = [&](std::int32_t t) { return triangles + 3 * static_cast<std::size_t>(t); };
+  auto validIds = [&](const std::int32_t* v)
+  {
+    return v[0] >= 0 && v[1] >= 0 && v[2] >= 0 && v[0] < pointCount && v[1] < pointCount &&
+      v[2] < pointCount;
+  };
+  // The one pass every run pays (most surfaces use every point): the rest only when one is not.
   std::vector<char> used(static_cast<std::size_t>(pointCount), 0);
-  std::vector<char> usable(static_cast<std::size_t>(std::max(triangleCount, 0)), 0);
   for (std::int32_t t = 0; t < triangleCount; ++t)
   {
     const std::int32_t* v = corners(t);
-    if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= pointCount || v[1] >= pointCount ||
-      v[2] >= pointCount)
-      continue;
-    for (int k = 0; k < 3; ++k)
-      used[static_cast<std::size_t>(v[k])] = 1;
-    usable[static_cast<std::size_t>(t)] = decidable(v[0]) && decidable(v[1]) && decidable(v[2]);
+    if (validIds(v))
+      for (int k = 0; k < 3; ++k)
+        used[static_cast<std::size_t>(v[k])] = 1;
   }
   std::vector<std::int32_t> unused;
   for (std::int32_t p = 0; p < pointCount; ++p)
@@ -76,9 +78,9 @@ std::vector<LeftOutPoint> unusedPointsLeftOut(const double* points,
   std::vector<TriangleBoxGrid::Box> boxes;
   for (std::int32_t t = 0; t < triangleCount; ++t)
   {
-    if (!usable[static_cast<std::size_t>(t)])
-      continue;
     const std::int32_t* v = corners(t);
+    if (!validIds(v) || !decidable(v[0]) || !decidable(v[1]) || !decidable(v[2]))
+      continue;
     TriangleBoxGrid::Box box;
     for (int k = 0; k < 3; ++k)
     {

@@ -133,8 +133,7 @@ VolumeMeshResult meshVolume(const double* points,
   if (options.refine)
   {
     RefinementOptions refinement = options.refinement;
-    if (refinement.regionMaxSize.empty())
-      refinement.regionMaxSize = boundary.regionMaxSize; // the region list's bounds
+    refinement.regionMaxSize = boundary.regionMaxSize; // the region list's bounds
     result.refinementStats = refineInterior(
       mesh, size, refinement, options.background, subProgress(progress, boundaryShare, refineEnd));
     if (!result.refinementStats.ok)
