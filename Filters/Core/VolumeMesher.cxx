@@ -192,6 +192,8 @@ VolumeMeshResult meshVolume(const double* points,
       result.error = "quality optimisation failed: " + result.optimizationStats.error;
       return result;
     }
+    // The optimiser only adds points (vertex insertion), inside the regions.
+    result.interiorPoints += result.optimizationStats.insertedVertices;
     lap("optimisation");
   }
   extractRegionMesh(mesh, result.points, result.tets, result.regionIds);

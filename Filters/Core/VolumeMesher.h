@@ -62,7 +62,7 @@ struct VolumeMeshResult
   // Q (TetQuality.h's measure) of every tet before optimisation, for the before/after histogram.
   std::vector<double> qualityBeforeOptimization;
   int steinerPoints = 0;  // recovery points
-  int interiorPoints = 0; // refinement points
+  int interiorPoints = 0; // points placed by refinement and by the optimiser
   int regionCount = 0;
   std::vector<double> regionAttribute; // per region (MesherResult's); empty without region points
   MesherResult boundaryStats;          // timings and counters of the boundary stage
