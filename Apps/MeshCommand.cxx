@@ -69,7 +69,7 @@ int RunMeshWithVtk(const MeshOptions& o)
         sizeArray = kConstantSizeArray;
       }
       mesher->SetInputData(surface);
-      mesher->SetRefine(!o.boundaryOnly);
+      mesher->SetRefine(o.refine && !o.boundaryOnly);
       mesher->SetOptimize(o.optimize && !o.boundaryOnly);
       mesher->SetSizeScale(o.sizeScale);
       mesher->SetMinSize(o.minSize);

@@ -48,6 +48,9 @@ options:
                         next to surface triangles larger than h, sizes also fall from
                         the triangles' own to h at 0.8 of this rate, and next to smaller
                         ones grow from 1.2 times theirs at this rate (1 or less: neither)
+  --no-refine           no interior points for a size field: the boundary mesh, then
+                        the optimisation, which adds a few points where it needs them
+                        (what --boundary-only leaves, with fewer flat and poor tets)
   --no-optimize         skip quality optimisation
   --passes N            optimisation passes (default 3)
   --quality-target Q    optimise tets below this quality (default 0.35)
@@ -82,6 +85,7 @@ struct Flag
   bool value;
 };
 const Flag kFlags[] = { { "--boundary-only", &MeshOptions::boundaryOnly, true },
+  { "--no-refine", &MeshOptions::refine, false },
   { "--no-optimize", &MeshOptions::optimize, false },
   { "--with-vtk", &MeshOptions::withVtk, true },
   { "--stats", &MeshOptions::stats, true },
@@ -269,6 +273,25 @@ int ParseMeshOptions(int argc, char* argv[], MeshOptions& o)
       outExt.c_str());
     return 2;
   }
+  // The size field only places interior points: without them a size option would be silently
+  // ignored, so say so.
+  if (o.boundaryOnly || !o.refine)
+  {
+    const MeshOptions defaults;
+    const char* sizeOption = o.size > 0   ? "--size"
+      : !o.sizeArray.empty()              ? "--size-array"
+      : !o.background.empty()             ? "--background"
+      : o.sizeScale != defaults.sizeScale ? "--size-scale"
+      : o.minSize > 0                     ? "--min-size"
+      : o.maxSize > 0                     ? "--max-size"
+      : o.gradation != defaults.gradation ? "--gradation"
+                                          : nullptr;
+    if (sizeOption)
+      std::fprintf(stderr,
+        "tetmesher mesh: warning: %s has no effect with %s (no interior points are placed)\n",
+        sizeOption,
+        o.boundaryOnly ? "--boundary-only" : "--no-refine");
+  }
   if (const std::string clash = OverwrittenInput(o.input, o.output); !clash.empty())
   {
     std::fprintf(stderr,
@@ -286,7 +309,7 @@ SurfaceMeshSettings SettingsOf(const MeshOptions& o)
   settings.checkInput = o.check;
   settings.enclosedShellsAreHoles = o.holes;
   settings.maximumSteinerPoints = o.maxSteiner;
-  settings.refine = !o.boundaryOnly;
+  settings.refine = o.refine && !o.boundaryOnly;
   settings.sizeScale = o.sizeScale;
   settings.minSize = o.minSize;
   settings.maxSize = o.maxSize;

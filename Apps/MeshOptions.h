@@ -18,7 +18,7 @@ struct MeshOptions
   std::chrono::steady_clock::time_point processStart; // when `mesh` began, for --timings
   std::string input, output;
   bool stats = false, timings = false, compress = false, holes = false, check = true, quiet = false,
-       boundaryOnly = false, optimize = true;
+       boundaryOnly = false, refine = true, optimize = true;
   bool withVtk = false; // --with-vtk: through vtkTetMesher and VTK's readers and writers
   int maxSteiner = -1;
   double passes = 3; // an integer; parsed as the other numbers

@@ -45,7 +45,7 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DATA = os.path.join(ROOT, "Data")
 QUICK = ["cubes", "star", "sphere", "icosphere", "torus", "nested_spheres", "gear"]
-TOOLS = ["tetmesher", "tetgen-pY", "tetgen-pYq1.2", "gmsh-delaunay", "gmsh-hxt", "vtkDelaunay3D"]
+TOOLS = ["tetmesher", "tetmesher-norefine", "tetgen-pY", "tetgen-pYq1.2", "gmsh-delaunay", "gmsh-hxt", "vtkDelaunay3D"]
 VTK_TETRA = 10
 
 
@@ -505,6 +505,9 @@ def tool_job(tool, case, work, tetmesher):
     if tool == "tetmesher":
         out = os.path.join(d, "out.vtu")
         return [tetmesher, "mesh", src, "-o", out, "-q", "--boundary-only"], d, lambda: read_vtu(out), [out]
+    if tool == "tetmesher-norefine":  # the boundary mesh, then the optimisation (no size field)
+        out = os.path.join(d, "out.vtu")
+        return [tetmesher, "mesh", src, "-o", out, "-q", "--no-refine"], d, lambda: read_vtu(out), [out]
     if tool.startswith("tetgen"):
         # TetGen 1.5 reads .off itself; other formats are written as .off (exact doubles)
         inp = os.path.join(d, "in.off")
@@ -777,7 +780,8 @@ def write_outputs(args, rows, cases, tools, command, started, finished, qhist):
     binary_dir = os.path.relpath(os.path.dirname(os.path.dirname(os.path.abspath(args.tetmesher))), ROOT)
     md.append("- versions: TetMesher git %s (Release, %s), TetGen %s, %s, VTK %s"
               % (v["tetmesher"], binary_dir, v["tetgen"], "Gmsh " + v["gmsh"], v["vtk"]))
-    md.append("- tools: `tetmesher mesh IN -o OUT.vtu -q --boundary-only`; `tetgen -pY` and `tetgen -pYq1.2` (on .off; "
+    md.append("- tools: `tetmesher mesh IN -o OUT.vtu -q --boundary-only` (*tetmesher*) and `--no-refine` "
+              "(*tetmesher-norefine*: the boundary mesh, then the optimisation); `tetgen -pY` and `tetgen -pYq1.2` (on .off; "
               ".vtp/.stl converted to .off with exact doubles); `gmsh in.geo -3 -nt 1` with "
               "Mesh.Algorithm3D=1 (Delaunay) / 10 (HXT) on the surface merged as a discrete MSH 2.2 mesh "
               "(one surface loop and volume per shell, enclosed shells as holes + own volume; Gmsh "

@@ -154,6 +154,43 @@ with tempfile.TemporaryDirectory() as tmp:
     expect(["mesh", os.path.join(corpus, "cube.vtp"), "-o", out, "-q", "--size", "1e-5",
             "--memory-limit", "-1"], 1,
            err_has=["about 1.41e+15 interior points", "tetrahedra a mesh can have"])
+    # --no-refine: the boundary mesh, then the optimisation (which may add points). On the tangled
+    # tori the boundary mesh alone has tets flat in doubles (15 at 2026-12-02); these are gone,
+    # every input triangle is still a boundary face, and the summary counts the added points.
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLUnstructuredGridReader
+    surface_reader = vtkXMLPolyDataReader()
+    surface_reader.SetFileName(os.path.join(corpus, "tori_tangle.vtp"))
+    surface_reader.Update()
+    surface = surface_reader.GetOutput()
+    triangles = {tuple(sorted(surface.GetCell(c).GetPointId(k) for k in range(3)))
+                 for c in range(surface.GetNumberOfCells())}
+    line = expect(["mesh", os.path.join(corpus, "tori_tangle.vtp"), "-o", out, "-q", "--no-refine"], 0,
+                  out_has=[" 0 Steiner)"])
+    grid_reader = vtkXMLUnstructuredGridReader()
+    grid_reader.SetFileName(out)
+    grid_reader.Update()
+    grid = grid_reader.GetOutput()
+    quality = grid.GetCellData().GetArray("Quality")
+    flat = [c for c in range(grid.GetNumberOfCells()) if not quality.GetValue(c) > 0]
+    faces = {}
+    for c in range(grid.GetNumberOfCells()):
+        ids = [grid.GetCell(c).GetPointId(k) for k in range(4)]
+        for k in range(4):
+            face = tuple(sorted(ids[:k] + ids[k + 1:]))
+            faces[face] = faces.get(face, 0) + 1
+    boundary = {face for face, count in faces.items() if count == 1}
+    interior = int(line.split("points (")[1].split(" interior")[0]) if "points (" in line else -1
+    if flat or boundary != triangles or \
+            grid.GetNumberOfPoints() != surface.GetNumberOfPoints() + interior or interior <= 0:
+        failures.append(f"--no-refine on tori_tangle.vtp: {len(flat)} tets of Q <= 0, boundary faces "
+                        f"{'==' if boundary == triangles else '!='} input triangles, "
+                        f"{grid.GetNumberOfPoints()} points for {surface.GetNumberOfPoints()} input "
+                        f"and {interior} interior:\n{line}")
+    # Size options without interior points are said to do nothing.
+    expect(["mesh", os.path.join(corpus, "cube.vtp"), "-o", out, "-q", "--no-refine", "--size", "0.1"], 0,
+           err_has=["warning: --size has no effect with --no-refine (no interior points are placed)"])
+    expect(["mesh", os.path.join(corpus, "cube.vtp"), "-o", out, "-q", "--boundary-only", "--gradation", "2"],
+           0, err_has=["warning: --gradation has no effect with --boundary-only"])
     expect(["mesh", os.path.join(corpus, "sphere.off"), "-o", out, "--memory-limit", "-2"], 2,
            err_has=["--memory-limit wants a number >= -1"])
     expect(["mesh", os.path.join(corpus, "sphere.off"), "-o", out, "--size", "-1"], 2,

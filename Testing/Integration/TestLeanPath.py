@@ -185,6 +185,7 @@ with tempfile.TemporaryDirectory() as tmp:
     case("nested_spheres.vtp --holes", ["mesh", d("nested_spheres.vtp"), "-o", "OUT", "-q", "--holes"])
     case("tori_tangle.vtp boundary only", ["mesh", d("tori_tangle.vtp"), "-o", "OUT", "-q", "--boundary-only"])
     case("alternator.vtp boundary only", ["mesh", d("alternator.vtp"), "-o", "OUT", "-q", "--boundary-only"])
+    case("tori_tangle.vtp --no-refine", ["mesh", d("tori_tangle.vtp"), "-o", "OUT", "-q", "--no-refine"])
     case("torus.vtp --no-optimize --gradation 1.3", ["mesh", d("torus.vtp"), "-o", "OUT", "-q",
                                                      "--no-optimize", "--gradation", "1.3"])
     case("torus with a size array", ["mesh", sized, "-o", "OUT", "-q", "--size-array", "h",
