@@ -140,12 +140,6 @@ MesherResult meshSurface(const double* points,
   }
   delaunayOptions.skip = skip.empty() ? nullptr : skip.data();
   DelaunayResult delaunay = buildDelaunay(mesh, points, pointCount, delaunayOptions);
-  if (options.inputCheck)
-  {
-    result.error = options.inputCheck();
-    if (!result.error.empty())
-      return result;
-  }
   result.delaunaySeconds = secondsSince(stageStart);
   if (!delaunay.ok)
   {
@@ -301,6 +295,18 @@ MesherResult meshSurface(const double* points,
       // inside a hole, or a hole point's region between the triangle and the exterior.
       result.error =
         unkeptTriangleError(mesh, triangleOf, i, regions.tetRegion, options.holePoints);
+      result.points.clear();
+      result.tets.clear();
+      result.regionIds.clear();
+      return result;
+    }
+  }
+  // The caller's input check (see MesherOptions::inputCheck) has run beside all of the above.
+  if (options.inputCheck)
+  {
+    result.error = options.inputCheck();
+    if (!result.error.empty())
+    {
       result.points.clear();
       result.tets.clear();
       result.regionIds.clear();

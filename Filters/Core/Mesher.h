@@ -51,10 +51,12 @@ struct MesherOptions
   // many bytes (MemoryBudget.h); <= 0: no memory check. Beyond the 32-bit indices (2^29
   // tets) is always refused.
   double memoryLimitBytes = 0;
-  // Called once the Delaunay of the surface points is built, before its result is looked
-  // at; a non-empty answer is the run's error. The caller's input check that runs beside
-  // the Delaunay (SurfaceMeshing.cxx) waits here, so that a defect it finds is the error
-  // even when the Delaunay or recovery would fail too.
+  // Called once the boundary mesh is complete, before it is returned; a non-empty answer is
+  // the run's error. The caller's input check that runs beside the whole boundary mesh
+  // (SurfaceMeshing.cxx) waits here; on the error paths before, the caller waits for it
+  // itself, so that a defect it finds is the error even when the Delaunay or recovery fails
+  // too (the boundary mesher is fuzzed on unchecked input: it fails with a message or
+  // succeeds).
   std::function<std::string()> inputCheck;
 };
 
