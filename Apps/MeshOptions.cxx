@@ -65,6 +65,9 @@ options:
   --holes               enclosed shells are holes instead of regions of their own
   --hole X,Y,Z          remove the region containing the point (X,Y,Z), as a hole in
                         TetGen's hole list (repeatable; added to a .smesh/.poly's list)
+  --point X,Y,Z         make (X,Y,Z) a vertex strictly inside the mesh, as TetGen's -i
+                        list (repeatable): output point N, N+1, ... in the order given,
+                        after the N input points; never moved by the optimiser
   --region X,Y,Z,A[,H]  give the region containing (X,Y,Z) the attribute A, as TetGen's
                         region list with -A: a RegionAttribute cell array (repeatable;
                         added to a .smesh/.poly's list; other regions: largest A + 1, ...);
@@ -194,9 +197,9 @@ int ParseMeshOptions(int argc, char* argv[], MeshOptions& o)
       }
       o.*(number->field) = std::min(value, number->high);
     }
-    else if ((arg == "--hole" || arg == "--region") && hasValue)
+    else if ((arg == "--hole" || arg == "--region" || arg == "--point") && hasValue)
     {
-      // --hole X,Y,Z; --region X,Y,Z,ATTRIBUTE[,MAXSIZE].
+      // --hole X,Y,Z; --point X,Y,Z; --region X,Y,Z,ATTRIBUTE[,MAXSIZE].
       const bool region = arg == "--region";
       const int most = region ? 5 : 3, fewest = region ? 4 : 3;
       const char* text = argv[++i];
@@ -221,11 +224,14 @@ int ParseMeshOptions(int argc, char* argv[], MeshOptions& o)
         std::fprintf(stderr,
           region ? "tetmesher mesh: --region wants X,Y,Z,ATTRIBUTE or X,Y,Z,ATTRIBUTE,MAXSIZE "
                    "(finite numbers, MAXSIZE >= 0), not '%s'\n"
-                 : "tetmesher mesh: --hole wants a point X,Y,Z of three finite numbers, not '%s'\n",
+                 : "tetmesher mesh: %s wants a point X,Y,Z of three finite numbers, not '%s'\n",
+          region ? text : arg.c_str(),
           text);
         return 2;
       }
-      std::vector<double>& list = region ? o.regionPoints : o.holePoints;
+      std::vector<double>& list = region ? o.regionPoints
+        : arg == "--hole"                ? o.holePoints
+                                         : o.interiorPoints;
       list.insert(list.end(), x, x + fewest);
       if (region)
         o.regionMaxSizes.push_back(x[4]);

@@ -26,6 +26,7 @@ struct MeshOptions
          maxSize = 0, gradation = 1.5, qualityTarget = 0.35;
   std::string sizeArray, background, backgroundArray = "h";
   std::vector<double> holePoints;     // --hole X,Y,Z, 3 per point, in the order given
+  std::vector<double> interiorPoints; // --point X,Y,Z, 3 per point, in the order given
   std::vector<double> regionPoints;   // --region X,Y,Z,A[,H]: X,Y,Z,A, 4 per point, in order
   std::vector<double> regionMaxSizes; // ... and H (0 when not given), 1 per point
 };

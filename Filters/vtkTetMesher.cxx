@@ -324,6 +324,26 @@ int vtkTetMesher::GetNumberOfRegionPoints()
   return static_cast<int>(this->RegionPoints.size() / 4);
 }
 
+void vtkTetMesher::AddInteriorPoint(double x, double y, double z)
+{
+  this->InteriorPoints.insert(this->InteriorPoints.end(), { x, y, z });
+  this->Modified();
+}
+
+void vtkTetMesher::RemoveAllInteriorPoints()
+{
+  if (!this->InteriorPoints.empty())
+  {
+    this->InteriorPoints.clear();
+    this->Modified();
+  }
+}
+
+int vtkTetMesher::GetNumberOfInteriorPoints()
+{
+  return static_cast<int>(this->InteriorPoints.size() / 3);
+}
+
 void vtkTetMesher::RemoveAllHolePoints()
 {
   if (this->HolePoints && this->HolePoints->GetNumberOfPoints() > 0)
@@ -344,6 +364,7 @@ void vtkTetMesher::PrintSelf(ostream& os, vtkIndent indent)
      << "HolePoints: " << (this->HolePoints ? this->HolePoints->GetNumberOfPoints() : vtkIdType(0))
      << "\n";
   os << indent << "RegionPoints: " << this->RegionPoints.size() / 4 << "\n";
+  os << indent << "InteriorPoints: " << this->InteriorPoints.size() / 3 << "\n";
   os << indent << "MaximumSteinerPoints: " << this->MaximumSteinerPoints << "\n";
   os << indent << "RemoveSteinerPoints: " << this->RemoveSteinerPoints << "\n";
   os << indent << "CheckInput: " << this->CheckInput << "\n";
@@ -548,6 +569,7 @@ int vtkTetMesher::RequestData(vtkInformation*,
   job.triangulatedPolygons = static_cast<double>(triangulatedPolygons);
   job.regionPoints = this->RegionPoints;
   job.regionMaxSizes = this->RegionMaxSizes;
+  job.interiorPoints = this->InteriorPoints;
   if (this->HolePoints)
     for (vtkIdType i = 0; i < this->HolePoints->GetNumberOfPoints(); ++i)
     {

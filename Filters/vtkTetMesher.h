@@ -104,6 +104,21 @@ public:
   int GetNumberOfRegionPoints();
   ///@}
 
+  ///@{
+  /**
+   * Points that must be vertices of the mesh, strictly inside it (TetGen's `-i` list, Gmsh's
+   * points embedded in a volume: a load, a sensor, a source). In the output they are points
+   * N .. N + k - 1 in the order added, N the number of input points (the Steiner points of
+   * boundary recovery come after them); refinement grades its points around them and the
+   * optimiser never moves them. Inserted also with Refine and Optimize off. A point outside
+   * the surface or in a hole, on an input triangle or edge, or equal to an input point or to
+   * another of these (decided exactly) fails the run naming the point.
+   */
+  void AddInteriorPoint(double x, double y, double z);
+  void RemoveAllInteriorPoints();
+  int GetNumberOfInteriorPoints();
+  ///@}
+
   vtkMTimeType GetMTime() override;
 
   ///@{
@@ -354,6 +369,7 @@ protected:
   vtkPoints* HolePoints = nullptr;
   std::vector<double> RegionPoints;   // 4 per point: x, y, z, attribute
   std::vector<double> RegionMaxSizes; // 1 per point (0: none)
+  std::vector<double> InteriorPoints; // 3 per point
 
 private:
   vtkTetMesher(const vtkTetMesher&) = delete;

@@ -878,6 +878,9 @@ OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
         for (int k = 0; k < 3; ++k)
           ctx_.fixed[static_cast<std::size_t>(ctx_.mesh.vertex(t, kFaceVertices[f][k]))] = 1;
   }
+  for (VertexId v : ctx_.options.fixedVertices)
+    if (v >= 0 && static_cast<std::size_t>(v) < nv)
+      ctx_.fixed[static_cast<std::size_t>(v)] = 1;
   ctx_.index.rebuild(ctx_.mesh);
   if (ctx_.options.smoothingMovesPerFreeVertex > 0)
     passMoveBudget_ = std::max<std::int64_t>(kMinSmoothingMoveBudget,

@@ -65,6 +65,8 @@ struct OptimizationOptions
   // gets 270 more tets and Q min 0.056 instead of 0.0075, and the optimiser, no longer
   // stalled, works up to its work bound (VolumeMeshOptions::optimizationPolls).
   int maxInsertedVertices = -1;
+  // Vertices that never move besides those on constrained faces (given interior points).
+  std::vector<VertexId> fixedVertices;
   int maxEdgeRing = 10; // longest edge ring that edge removal retriangulates
   int maxMultiFace = 8; // most faces one multi-face removal takes out (1: 2-3 flips only)
   // Gradient-ascent steps per vertex after the barycentre. 2 rather than 8: a vertex is

@@ -177,6 +177,7 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
   options.boundary.holePoints = input.holePoints;
   options.boundary.regionPoints = input.regionPoints;
   options.boundary.regionMaxSizes = input.regionMaxSizes;
+  options.interiorPoints = input.interiorPoints;
   options.boundary.maxSteinerPoints = settings.maximumSteinerPoints;
   options.boundary.removeSteinerPoints = settings.removeSteinerPoints;
   options.refine = settings.refine;

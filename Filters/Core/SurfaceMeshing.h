@@ -61,6 +61,8 @@ struct SurfaceMeshInput
   std::vector<double> regionPoints;
   // Per region point (may be empty), the largest edge length wanted in its region (<= 0: none).
   std::vector<double> regionMaxSizes;
+  // Points to be vertices inside the mesh, 3 doubles per point (VolumeMeshOptions).
+  std::vector<double> interiorPoints;
   // The point array of sizes (vtkTetMesher's SizeArrayName), asked for only when refining:
   // fills one value per point, false when the surface has no array of that name.
   std::string sizeArrayName;

@@ -1,5 +1,7 @@
 #include "VolumeMesher.h"
 
+#include "GivenPoints.h"
+
 #include "MeshAssembly.h"
 #include "ParallelPair.h"
 #include "SizeField.h"
@@ -68,6 +70,7 @@ VolumeMeshResult meshVolume(const double* points,
     lapStart = now;
   };
   const bool later = options.refine || options.optimize;
+  const std::size_t givenCount = options.interiorPoints.size() / 3;
   const double boundaryShare = later ? 0.4 : 1.0;
   const double refineEnd = options.optimize ? 0.75 : 1.0;
 
@@ -103,7 +106,7 @@ VolumeMeshResult meshVolume(const double* points,
     result.boundaryStats = std::move(boundary);
     return result;
   }
-  if (!later)
+  if (!later && givenCount == 0)
   {
     result.points = std::move(boundary.points);
     result.tets = std::move(boundary.tets);
@@ -123,6 +126,25 @@ VolumeMeshResult meshVolume(const double* points,
     return result;
   }
   lap("mesh assembly");
+  // Given interior points (GivenPoints.h): mesh ids from here, output ids from pointCount on.
+  const VertexId firstGiven = mesh.mesh.vertexCount();
+  if (givenCount > 0)
+  {
+    const std::string error = insertGivenPoints(mesh,
+      options.interiorPoints,
+      [pointCount](VertexId v)
+      {
+        return v < pointCount ? "input point " + std::to_string(v)
+                              : std::string("a Steiner point of the boundary mesh");
+      });
+    if (!error.empty())
+    {
+      result.error = error;
+      return result;
+    }
+    result.interiorPoints = static_cast<int>(givenCount);
+    lap("interior points given");
+  }
   // Size field at the input points: given, else the mean boundary edge length there.
   std::vector<double> size = boundaryEdgeSizes(points, pointCount, triangles, triangleCount);
   for (std::size_t i = 0; i < options.inputSizes.size() && i < size.size(); ++i)
@@ -141,7 +163,7 @@ VolumeMeshResult meshVolume(const double* points,
       result.error = "interior point creation failed: " + result.refinementStats.error;
       return result;
     }
-    result.interiorPoints = result.refinementStats.insertedPoints;
+    result.interiorPoints += result.refinementStats.insertedPoints;
     const RefinementResult& r = result.refinementStats;
     lap("refinement");
     // Split the refinement lap into its parts (the rest is the boundary edge sizes).
@@ -168,8 +190,11 @@ VolumeMeshResult meshVolume(const double* points,
     std::int64_t polls = 0;
     bool outOfWork = false, aborted = false;
     auto stageProgress = subProgress(progress, refineEnd, 1.0);
+    OptimizationOptions optimization = options.optimization;
+    for (std::size_t i = 0; i < givenCount; ++i)
+      optimization.fixedVertices.push_back(firstGiven + static_cast<VertexId>(i));
     result.optimizationStats = optimizeMesh(mesh,
-      options.optimization,
+      optimization,
       h,
       [&](double p)
       {
@@ -222,6 +247,33 @@ VolumeMeshResult meshVolume(const double* points,
         size[v] = count[v] > 0 ? sum[v] / count[v] : 0.0;
     }
     result.vertexSize = std::move(size);
+  }
+  // The given points right after the input points, before the Steiner points.
+  if (givenCount > 0 && firstGiven > pointCount)
+  {
+    const VertexId steiner = firstGiven - pointCount, given = static_cast<VertexId>(givenCount);
+    auto newId = [&](VertexId v)
+    {
+      return v < pointCount      ? v
+        : v < firstGiven         ? v + given
+        : v < firstGiven + given ? v - steiner
+                                 : v;
+    };
+    for (std::int32_t& v : result.tets)
+      v = newId(v);
+    auto permute = [&](std::vector<double>& values, std::size_t width)
+    {
+      if (values.size() < width * static_cast<std::size_t>(firstGiven + given))
+        return;
+      std::vector<double> moved(values.begin() + width * static_cast<std::size_t>(pointCount),
+        values.begin() + width * static_cast<std::size_t>(firstGiven + given));
+      for (VertexId v = pointCount; v < firstGiven + given; ++v)
+        std::copy_n(moved.begin() + width * static_cast<std::size_t>(v - pointCount),
+          width,
+          values.begin() + width * static_cast<std::size_t>(newId(v)));
+    };
+    permute(result.points, 3);
+    permute(result.vertexSize, 1);
   }
   result.tetFaceTriangle = tetFaceTriangles(result.tets, triangles, triangleCount);
   result.boundaryFaceTet = firstFaceOfTriangles(result.tetFaceTriangle, triangleCount);

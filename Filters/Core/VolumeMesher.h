@@ -45,6 +45,11 @@ struct VolumeMeshOptions
   std::vector<double> inputSizes;
   // A controlling space: h(x) anywhere; when set it overrides the interpolation inside.
   std::function<double(const double*)> background;
+  // Points to be vertices strictly inside the mesh (3 per point; GivenPoints.h): output ids
+  // pointCount .. pointCount + k - 1 in this order, right after the input points (the
+  // boundary mesh's Steiner points come after them). They are inserted even when neither
+  // refinement nor optimisation runs, and the optimiser never moves them.
+  std::vector<double> interiorPoints;
 };
 
 struct VolumeMeshResult
@@ -62,7 +67,7 @@ struct VolumeMeshResult
   // Q (TetQuality.h's measure) of every tet before optimisation, for the before/after histogram.
   std::vector<double> qualityBeforeOptimization;
   int steinerPoints = 0;  // recovery points
-  int interiorPoints = 0; // points placed by refinement and by the optimiser
+  int interiorPoints = 0; // points placed inside: given, by refinement, by the optimiser
   int regionCount = 0;
   std::vector<double> regionAttribute; // per region (MesherResult's); empty without region points
   MesherResult boundaryStats;          // timings and counters of the boundary stage

@@ -454,3 +454,77 @@ TEST(VolumeMesher, OptimiserEndsAStageThatNoLongerGains)
   EXPECT_GE(r.minQualityAfter, r.minQualityBefore);
   EXPECT_GE(r.minDihedralAfter, r.minDihedralBefore);
 }
+
+// Points given inside (TetGen's -i list) are vertices with output ids n, n+1, ... right after
+// the n input points, bit-identical, before the boundary mesh's Steiner points, never moved by the
+// optimiser; the boundary stays exact. Points that cannot be vertices strictly inside are errors
+// naming them.
+TEST(VolumeMesher, GivenInteriorPointsAreVerticesRightAfterTheInputPoints)
+{
+  const Surface s = twistedTower(8, 6, 0.35, 0.25); // Schonhardt bands: Steiner points
+  const std::int32_t n = s.pointCount();
+  const std::vector<double> given = { 0.01, 0.013, 0.4, -0.05, 0.02, 0.65 };
+  std::vector<int> sign(static_cast<std::size_t>(s.triangleCount()), 1);
+  for (const bool full : { false, true })
+  {
+    VolumeMeshOptions options;
+    options.refine = full;
+    options.optimize = full;
+    options.inputSizes.assign(static_cast<std::size_t>(n), 0.1);
+    options.interiorPoints = given;
+    const VolumeMeshResult v =
+      meshVolume(s.points.data(), n, s.triangles.data(), s.triangleCount(), options);
+    ASSERT_TRUE(v.ok) << v.error;
+    EXPECT_GT(v.steinerPoints, 0) << "the tower needs Steiner points";
+    EXPECT_EQ(checkMesh(s, asMesherResult(v, n), sign, 1), "") << "full " << full;
+    std::vector<char> used(v.points.size() / 3, 0);
+    for (std::int32_t id : v.tets)
+      used[static_cast<std::size_t>(id)] = 1;
+    for (std::size_t i = 0; i < given.size() / 3; ++i)
+    {
+      const std::size_t id = static_cast<std::size_t>(n) + i;
+      EXPECT_TRUE(used[id]) << "given point " << i;
+      for (int k = 0; k < 3; ++k)
+        EXPECT_EQ(v.points[3 * id + static_cast<std::size_t>(k)],
+          given[3 * i + static_cast<std::size_t>(k)])
+          << "given point " << i << " full " << full;
+    }
+    // Every Steiner point (after the given ones) is a vertex too.
+    for (std::size_t id = static_cast<std::size_t>(n) + 2;
+         id < static_cast<std::size_t>(n) + 2 + static_cast<std::size_t>(v.steinerPoints);
+         ++id)
+      EXPECT_TRUE(used[id]) << "Steiner point " << id;
+    // Refinement adds points around them (h = 0.1 in a tower of radius 1, height 1.5).
+    EXPECT_EQ(v.interiorPoints > 2, full) << v.interiorPoints;
+    EXPECT_EQ(v.vertexSize.size(), full ? v.points.size() / 3 : 0);
+  }
+
+  // Errors, each naming the point: outside, on a face, on an edge, at an input point, twice.
+  const Surface c = cube(2); // unit cube, faces split 2x2
+  const struct
+  {
+    std::vector<double> points;
+    const char* message;
+  } bad[] = {
+    { { 0.5, 0.5, 0.5, 2, 0.5, 0.5 },
+      "interior point 1 (2, 0.5, 0.5) is outside the meshed domain" },
+    { { 0.25, 0.3, 0 }, "interior point 0 (0.25, 0.3, 0) lies on the surface" },
+    { { 0.3, 0, 0 }, "interior point 0 (0.3, 0, 0) lies on the surface" },
+    { { 0.5, 0.5, 0 }, "interior point 0 (0.5, 0.5, 0) coincides with input point" },
+    { { 0.2, 0.3, 0.4, 0.2, 0.3, 0.4 },
+      "interior point 1 (0.2, 0.3, 0.4) coincides with interior point 0" },
+    { { 0.2, 0.3, std::nan("") }, "interior point 0 has a non-finite coordinate" },
+  };
+  for (const auto& b : bad)
+    for (const bool refine : { false, true })
+    {
+      VolumeMeshOptions options;
+      options.refine = refine;
+      options.interiorPoints = b.points;
+      const VolumeMeshResult v =
+        meshVolume(c.points.data(), c.pointCount(), c.triangles.data(), c.triangleCount(), options);
+      EXPECT_FALSE(v.ok);
+      EXPECT_NE(v.error.find(b.message), std::string::npos) << v.error;
+      EXPECT_TRUE(v.tets.empty());
+    }
+}

@@ -186,6 +186,27 @@ with tempfile.TemporaryDirectory() as tmp:
                         f"{'==' if boundary == triangles else '!='} input triangles, "
                         f"{grid.GetNumberOfPoints()} points for {surface.GetNumberOfPoints()} input "
                         f"and {interior} interior:\n{line}")
+    # --point X,Y,Z (TetGen's -i list): anchor.off's boundary mesh has Steiner points; the given
+    # points are output points 519 and 520, bit for bit, vertices of tets, and the summary counts
+    # them as interior; points that cannot be vertices strictly inside are named.
+    given = [(0.14, -0.044, -0.067), (0.344, 0.05, -0.036)]
+    point_args = [a for p in given for a in ("--point", ",".join(repr(x) for x in p))]
+    for extra in ([], ["--boundary-only"], ["--with-vtk"]):
+        line = expect(["mesh", os.path.join(corpus, "anchor.off"), "-o", out, "-q"] + point_args + extra, 0,
+                      out_has=["Steiner)"])
+        grid_reader.SetFileName(out)
+        grid_reader.Modified()
+        grid_reader.Update()
+        grid = grid_reader.GetOutput()
+        ids = {grid.GetCell(c).GetPointId(k) for c in range(grid.GetNumberOfCells()) for k in range(4)}
+        got = [grid.GetPoint(519 + i) for i in range(2)]
+        if got != given or not {519, 520} <= ids or ("--boundary-only" in extra and "(2 interior" not in line):
+            failures.append(f"--point {extra}: points 519, 520 are {got}, used {sorted({519, 520} & ids)}:\n{line}")
+    for point, message in (("2,0,0", "interior point 0 (2, 0, 0) is outside the meshed domain"),
+                           ("-0.5,-0.1875,-0.103293", "coincides with input point"),
+                           ("0.1,0.2", "--point wants a point X,Y,Z of three finite numbers, not '0.1,0.2'")):
+        expect(["mesh", os.path.join(corpus, "anchor.off"), "-o", out, "-q", "--point", point],
+               2 if "wants" in message else 1, err_has=[message])
     # Size options without interior points are said to do nothing.
     expect(["mesh", os.path.join(corpus, "cube.vtp"), "-o", out, "-q", "--no-refine", "--size", "0.1"], 0,
            err_has=["warning: --size has no effect with --no-refine (no interior points are placed)"])

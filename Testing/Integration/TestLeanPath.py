@@ -186,6 +186,9 @@ with tempfile.TemporaryDirectory() as tmp:
     case("tori_tangle.vtp boundary only", ["mesh", d("tori_tangle.vtp"), "-o", "OUT", "-q", "--boundary-only"])
     case("alternator.vtp boundary only", ["mesh", d("alternator.vtp"), "-o", "OUT", "-q", "--boundary-only"])
     case("tori_tangle.vtp --no-refine", ["mesh", d("tori_tangle.vtp"), "-o", "OUT", "-q", "--no-refine"])
+    case("anchor.off --point (after the input points, before the Steiner points)",
+         ["mesh", d("anchor.off"), "-o", "OUT", "-q", "--point", "0.14,-0.044,-0.067", "--point", "0.344,0.05,-0.036"])
+    case("cube.vtp --point outside", ["mesh", d("cube.vtp"), "-o", "OUT", "-q", "--point", "2,0.5,0.5"])
     case("torus.vtp --no-optimize --gradation 1.3", ["mesh", d("torus.vtp"), "-o", "OUT", "-q",
                                                      "--no-optimize", "--gradation", "1.3"])
     case("torus with a size array", ["mesh", sized, "-o", "OUT", "-q", "--size-array", "h",

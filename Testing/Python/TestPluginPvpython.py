@@ -98,4 +98,21 @@ for region_points, expected in (([0.01, 0.02, 0.03, 5.0, 0.0], [5.0, 6.0]), ([],
     assert got == expected, (region_points, got)
 print("TetMesher proxy: RegionPoints gives RegionAttribute, and emptied drops it")
 
+# InteriorPoints (x y z per point, TetGen's -i list): output points n, n+1 after the n input
+# points, bit for bit, and the boundary exact; emptied, the input points alone.
+n_nested = len(nested_points)
+for interior in ([0.01, 0.02, 0.03, 0.3, 0.2, 0.1], []):
+    holed.InteriorPoints = interior
+    holed.UpdatePipeline()
+    result = servermanager.Fetch(holed, arg1=None, arg2=None, idx=0)
+    result_points = vtk_to_numpy(result.GetPoints().GetData())
+    result_tets = vtk_to_numpy(result.GetCells().GetConnectivityArray()).reshape(-1, 4)
+    result_regions = vtk_to_numpy(result.GetCellData().GetArray("RegionId"))
+    problems = check_boundary_mesh(nested_points, nested_triangles, result_points, result_tets,
+                                   result_regions, shell_volumes[0])
+    assert not problems, (interior, problems)
+    assert len(result_points) == n_nested + len(interior) // 3, (interior, len(result_points))
+    assert result_points[n_nested:].ravel().tolist() == interior, result_points[n_nested:]
+print("TetMesher proxy: InteriorPoints are vertices n, n+1, and emptied none")
+
 print("TestPluginPvpython: ok, Q min %.4f mean %.4f" % (q_ref.min(), q_ref.mean()))

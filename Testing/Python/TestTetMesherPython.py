@@ -373,6 +373,38 @@ elif mesher.GetOutput().GetNumberOfCells() != 0:
 else:
     print("memory limit:", mesher.GetLastError()[:140])
 
+# AddInteriorPoint (TetGen's -i list, the plugin's InteriorPoints): on anchor.off, whose boundary
+# mesh has Steiner points, a point inside (the centroid of the boundary mesh's largest tet) is
+# output point n, bit for bit, before the Steiner points, and the boundary stays exact, through
+# the full pipeline too; a point outside is named; RemoveAllInteriorPoints empties the list.
+anchor_points, anchor_triangles = read_surface(os.path.join(data, "anchor.off"))
+n_anchor = len(anchor_points)
+pointed, point_errors = boundary_mesher(to_polydata(anchor_points, anchor_triangles))
+pointed.Update()
+plain_points, plain_tets = grid_arrays(pointed.GetOutput())
+a, b, c, d = (plain_points[plain_tets[:, k]] for k in range(4))
+largest = np.argmax(np.abs(np.einsum("ij,ij->i", b - a, np.cross(c - a, d - a))))
+inside = [float(x) for x in plain_points[plain_tets[largest]].mean(axis=0)]
+pointed.AddInteriorPoint(*inside)
+for refine in (False, True):
+    pointed.SetRefine(refine)
+    pointed.SetOptimize(refine)
+    pointed.Update()
+    got_points, got_tets = grid_arrays(pointed.GetOutput())
+    problems = check_boundary_mesh(anchor_points, anchor_triangles, got_points, got_tets)
+    if problems or got_points[n_anchor].tolist() != inside or n_anchor not in set(got_tets.ravel().tolist()) \
+            or len(got_points) <= n_anchor + 1 or pointed.GetNumberOfInteriorPoints() != 1:
+        failures.append(f"AddInteriorPoint (refine {refine}): {problems}, point n {got_points[n_anchor].tolist()} "
+                        f"vs {inside}, {len(got_points)} points")
+pointed.AddInteriorPoint(100.0, 0.0, 0.0)
+pointed.Update()
+if not any("interior point 1 (100, 0, 0) is outside the meshed domain" in e for e in point_errors):
+    failures.append(f"an interior point outside the surface: {point_errors}")
+pointed.RemoveAllInteriorPoints()
+pointed.Update()
+if pointed.GetNumberOfInteriorPoints() != 0 or pointed.GetOutput().GetNumberOfCells() == 0:
+    failures.append("RemoveAllInteriorPoints: the list is not empty, or no mesh")
+
 if failures:
     print("\n".join(failures))
     sys.exit(1)
