@@ -22,8 +22,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <string>
+#include <vector>
 
 namespace tetmesher
 {
@@ -74,6 +76,75 @@ inline std::string checkMesh(const FuzzSurface& s, const MesherResult& r)
     if (face != tri)
       return "input triangle " + std::to_string(i) + " is not a face of its boundary tet";
   }
+  return {};
+}
+
+// Given interior points (GivenPoints.h) on an accepted surface, the boundary mesh alone: the
+// centroid of the boundary mesh's largest tet becomes output point n, bit for bit, in a mesh
+// that still keeps the surface (or, where rounding puts it outside or on a face, the error
+// names interior point 0); input point 0 given again is always an error naming interior point
+// 0 (it is a vertex, or outside, or an unused point on the surface left out).
+inline std::string checkGivenPoints(const FuzzSurface& s,
+  const MesherResult& r,
+  const MesherOptions& boundary)
+{
+  const std::int32_t n = s.pointCount();
+  if (r.tets.empty())
+    return {};
+  std::size_t largest = 0;
+  double largestVolume = -1;
+  for (std::size_t t = 0; t < r.tets.size() / 4; ++t)
+  {
+    const double* p[4];
+    for (int k = 0; k < 4; ++k)
+      p[k] = &r.points[3 * static_cast<std::size_t>(r.tets[4 * t + static_cast<std::size_t>(k)])];
+    double e[3][3];
+    for (int k = 0; k < 3; ++k)
+      for (int d = 0; d < 3; ++d)
+        e[k][d] = p[k + 1][d] - p[0][d];
+    const double volume = std::fabs(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+      e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+      e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]));
+    if (volume > largestVolume)
+    {
+      largestVolume = volume;
+      largest = t;
+    }
+  }
+  std::vector<double> centroid(3, 0.0);
+  for (int k = 0; k < 4; ++k)
+    for (int d = 0; d < 3; ++d)
+      centroid[static_cast<std::size_t>(d)] += 0.25 *
+        r.points[3 * static_cast<std::size_t>(r.tets[4 * largest + static_cast<std::size_t>(k)]) +
+          static_cast<std::size_t>(d)];
+  VolumeMeshOptions options;
+  options.boundary = boundary;
+  options.refine = false;
+  options.optimize = false;
+  options.interiorPoints = centroid;
+  auto namesPoint = [](const std::string& error)
+  { return error.rfind("interior point 0 ", 0) == 0; };
+  const VolumeMeshResult v =
+    meshVolume(s.points.data(), n, s.triangles.data(), s.triangleCount(), options);
+  if (!v.ok && !namesPoint(v.error))
+    return "given point: " + (v.error.empty() ? std::string("failed without a message") : v.error);
+  if (v.ok)
+  {
+    const std::size_t at = 3 * static_cast<std::size_t>(n);
+    if (v.points.size() < at + 3 ||
+      std::memcmp(&v.points[at], centroid.data(), 3 * sizeof(double)) != 0 ||
+      std::find(v.tets.begin(), v.tets.end(), n) == v.tets.end())
+      return "given point: not output point n, bit for bit, in a tet";
+    const std::string problem = checkMesh(s, asMesherResult(v, n));
+    if (!problem.empty())
+      return "given point: " + problem;
+  }
+  options.interiorPoints.assign(s.points.begin(), s.points.begin() + 3);
+  const VolumeMeshResult w =
+    meshVolume(s.points.data(), n, s.triangles.data(), s.triangleCount(), options);
+  if (w.ok || !namesPoint(w.error))
+    return "input point 0 given as an interior point: " +
+      (w.ok ? std::string("accepted") : w.error);
   return {};
 }
 
@@ -140,6 +211,9 @@ inline std::string runFuzzSurface(const std::uint8_t* data, std::size_t size)
     return {};
   std::string problem = checkMesh(s, r);
   if (!problem.empty() || !s.fullPipeline || m > kMaxPipelineTriangles)
+    return problem;
+  problem = checkGivenPoints(s, r, options);
+  if (!problem.empty())
     return problem;
   // The whole pipeline on the accepted surface: it may refuse (a size field beyond the
   // indices), always with a message; a mesh it returns keeps the boundary.
