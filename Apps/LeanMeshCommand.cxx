@@ -157,7 +157,7 @@ int RunMesh(int argc, char* argv[])
       job.regionMaxSizes = surface.regionMaxSizes;
       job.regionMaxSizes.insert(
         job.regionMaxSizes.end(), options.regionMaxSizes.begin(), options.regionMaxSizes.end());
-      job.interiorPoints = options.interiorPoints;
+      job.interiorPoints = InteriorPointsOf(options);
       job.sizeArrayName = options.size > 0 ? kConstantSizeArray : options.sizeArray;
       job.readSizeArray = [&](std::vector<double>& sizes)
       {

@@ -107,9 +107,9 @@ int RunMeshWithVtk(const MeshOptions& o)
           regionPoints[i + 2],
           regionPoints[i + 3],
           i / 4 < regionMaxSizes.size() ? regionMaxSizes[i / 4] : 0.0);
-      for (std::size_t i = 0; i + 2 < o.interiorPoints.size(); i += 3)
-        mesher->AddInteriorPoint(
-          o.interiorPoints[i], o.interiorPoints[i + 1], o.interiorPoints[i + 2]);
+      const std::vector<double> interiorPoints = InteriorPointsOf(o);
+      for (std::size_t i = 0; i + 2 < interiorPoints.size(); i += 3)
+        mesher->AddInteriorPoint(interiorPoints[i], interiorPoints[i + 1], interiorPoints[i + 2]);
       mesher->SetMaximumSteinerPoints(o.maxSteiner);
       mesher->SetCheckInput(o.check);
       vtkNew<ProgressBar> bar;

@@ -1,6 +1,7 @@
 #include "MeshOptions.h"
 
 #include "MeshExport.h"
+#include "SolverSurfaceFiles.h"
 #include "SurfaceFiles.h"
 
 #include <algorithm>
@@ -68,6 +69,8 @@ options:
   --point X,Y,Z         make (X,Y,Z) a vertex strictly inside the mesh, as TetGen's -i
                         list (repeatable): output point N, N+1, ... in the order given,
                         after the N input points; never moved by the optimiser
+  --points FILE         the same for every point of a TetGen .node file (TetGen's
+                        NAME.a.node for -i), before those of --point
   --region X,Y,Z,A[,H]  give the region containing (X,Y,Z) the attribute A, as TetGen's
                         region list with -A: a RegionAttribute cell array (repeatable;
                         added to a .smesh/.poly's list; other regions: largest A + 1, ...);
@@ -108,7 +111,8 @@ const Text kTexts[] = { { "-o", &MeshOptions::output },
   { "--output", &MeshOptions::output },
   { "--size-array", &MeshOptions::sizeArray },
   { "--background", &MeshOptions::background },
-  { "--background-array", &MeshOptions::backgroundArray } };
+  { "--background-array", &MeshOptions::backgroundArray },
+  { "--points", &MeshOptions::pointsFile } };
 
 // A number from `low` up; larger than `high` counts as `high`.
 struct Number
@@ -307,6 +311,19 @@ int ParseMeshOptions(int argc, char* argv[], MeshOptions& o)
     return 2;
   }
   return -1;
+}
+
+std::vector<double> InteriorPointsOf(const MeshOptions& o)
+{
+  std::vector<double> points;
+  if (!o.pointsFile.empty())
+  {
+    SurfaceData file;
+    ReadTetGenNodeFile(o.pointsFile, file);
+    points = std::move(file.points);
+  }
+  points.insert(points.end(), o.interiorPoints.begin(), o.interiorPoints.end());
+  return points;
 }
 
 SurfaceMeshSettings SettingsOf(const MeshOptions& o)

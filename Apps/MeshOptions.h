@@ -27,6 +27,7 @@ struct MeshOptions
   std::string sizeArray, background, backgroundArray = "h";
   std::vector<double> holePoints;     // --hole X,Y,Z, 3 per point, in the order given
   std::vector<double> interiorPoints; // --point X,Y,Z, 3 per point, in the order given
+  std::string pointsFile;             // --points FILE (TetGen .node)
   std::vector<double> regionPoints;   // --region X,Y,Z,A[,H]: X,Y,Z,A, 4 per point, in order
   std::vector<double> regionMaxSizes; // ... and H (0 when not given), 1 per point
 };
@@ -34,6 +35,10 @@ struct MeshOptions
 // Parses the arguments after `mesh`. Returns -1 when the command should run, else the exit
 // status (0 after --help, 2 on wrong usage, with the message printed).
 int ParseMeshOptions(int argc, char* argv[], MeshOptions& options);
+
+// The points of --points FILE (a TetGen .node file), then those of --point, 3 per point.
+// Throws FileError naming the file and line.
+std::vector<double> InteriorPointsOf(const MeshOptions& options);
 
 // vtkTetMesher's properties as these options set them (the others keep their defaults).
 SurfaceMeshSettings SettingsOf(const MeshOptions& options);

@@ -202,6 +202,23 @@ with tempfile.TemporaryDirectory() as tmp:
         got = [grid.GetPoint(519 + i) for i in range(2)]
         if got != given or not {519, 520} <= ids or ("--boundary-only" in extra and "(2 interior" not in line):
             failures.append(f"--point {extra}: points 519, 520 are {got}, used {sorted({519, 520} & ids)}:\n{line}")
+    # --points FILE: the same points from a TetGen .node file (numbered from 1, as TetGen's
+    # NAME.a.node for -i), on both paths: the same points 519 and 520; a bad line is named.
+    node = os.path.join(tmp, "anchor.a.node")
+    with open(node, "w") as f:
+        f.write("2 3 0 0\n" + "".join(f"{i + 1} {p[0]!r} {p[1]!r} {p[2]!r}\n" for i, p in enumerate(given)))
+    for extra in ([], ["--with-vtk"]):
+        expect(["mesh", os.path.join(corpus, "anchor.off"), "-o", out, "-q", "--points", node] + extra, 0)
+        grid_reader.SetFileName(out)
+        grid_reader.Modified()
+        grid_reader.Update()
+        got = [grid_reader.GetOutput().GetPoint(519 + i) for i in range(2)]
+        if got != given:
+            failures.append(f"--points {extra}: points 519, 520 are {got}")
+    with open(node, "w") as f:
+        f.write("2 3 0 0\n1 0.14 -0.044\n")
+    expect(["mesh", os.path.join(corpus, "anchor.off"), "-o", out, "-q", "--points", node], 1,
+           err_has=["anchor.a.node: line 2: expected point 1 of 2"])
     for point, message in (("2,0,0", "interior point 0 (2, 0, 0) is outside the meshed domain"),
                            ("-0.5,-0.1875,-0.103293", "coincides with input point"),
                            ("0.1,0.2", "--point wants a point X,Y,Z of three finite numbers, not '0.1,0.2'")):
