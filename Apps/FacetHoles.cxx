@@ -114,10 +114,10 @@ std::size_t LargestPolygon(const std::vector<double>& points, const std::vector<
   double largest = -1;
   for (std::size_t p = 0; p < polygons.size(); ++p)
   {
-    const double* n = polygonNormal(
-      points.data(), polygons[p].data(), static_cast<std::int64_t>(polygons[p].size()))
-                        .normal;
-    const double area = std::hypot(n[0], n[1], n[2]);
+    // Held by value: a pointer into the temporary's array would dangle (ASan caught it).
+    const PolygonNormal newell = polygonNormal(
+      points.data(), polygons[p].data(), static_cast<std::int64_t>(polygons[p].size()));
+    const double area = std::hypot(newell.normal[0], newell.normal[1], newell.normal[2]);
     if (area > largest)
     {
       largest = area;
