@@ -194,11 +194,6 @@ FlipCost memoized(const ItemCost& base, const TetMesh& mesh, std::shared_ptr<Mem
 // Cost-neutral moves tried by the one-move lookahead of a stuck flip search.
 constexpr std::size_t kMaxNeutral = 48;
 
-struct WorkspaceDeleter
-{
-  void operator()(InsertionWorkspace* w) const { destroyInsertionWorkspace(w); }
-};
-
 class Recovery
 {
 public:
@@ -440,7 +435,9 @@ private:
     boxGrid_->near(box, margin, nearScratch_);
     return nearScratch_;
   }
-  std::unique_ptr<InsertionWorkspace, WorkspaceDeleter> workspace_{ createInsertionWorkspace() };
+  std::unique_ptr<InsertionWorkspace, InsertionWorkspaceDeleter> workspace_{
+    createInsertionWorkspace()
+  };
   RecoveryResult result_;
   // Input triangles by point: those of point v are vertexTriangles_[vertexTriangleStart_[v] ..
   // vertexTriangleStart_[v + 1]), in increasing order.

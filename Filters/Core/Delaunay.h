@@ -67,6 +67,11 @@ DelaunayResult buildDelaunay(TetMesh& mesh,
 struct InsertionWorkspace;
 InsertionWorkspace* createInsertionWorkspace();
 void destroyInsertionWorkspace(InsertionWorkspace* workspace);
+// Owns a workspace: std::unique_ptr<InsertionWorkspace, InsertionWorkspaceDeleter>.
+struct InsertionWorkspaceDeleter
+{
+  void operator()(InsertionWorkspace* workspace) const { destroyInsertionWorkspace(workspace); }
+};
 
 enum class InsertStatus
 {

@@ -4,7 +4,6 @@
 #include "MeshTopology.h"
 #include "Predicates.h"
 
-#include <algorithm>
 #include <memory>
 #include <sstream>
 
@@ -35,11 +34,8 @@ std::string insertGivenPoints(RegionMesh& mesh,
     ++hint;
   if (hint == tets.tetCapacity())
     return name(0) + " is outside the meshed domain (the mesh has no tetrahedra)";
-  struct WorkspaceDeleter
-  {
-    void operator()(InsertionWorkspace* w) const { destroyInsertionWorkspace(w); }
-  };
-  std::unique_ptr<InsertionWorkspace, WorkspaceDeleter> workspace(createInsertionWorkspace());
+  std::unique_ptr<InsertionWorkspace, InsertionWorkspaceDeleter> workspace(
+    createInsertionWorkspace());
   const VertexId firstNew = tets.vertexCount();
   std::vector<TetId> star;
   for (std::size_t i = 0; i < count; ++i)
@@ -68,21 +64,9 @@ std::string insertGivenPoints(RegionMesh& mesh,
     // The cavity never crosses a constrained face (the boundary, interfaces): every tet of the
     // new vertex's star lies in the container's region.
     mesh.region.resize(static_cast<std::size_t>(tets.tetCapacity()), -1);
-    star.assign(1, inserted.tet);
-    for (std::size_t k = 0; k < star.size(); ++k)
-    {
-      const TetId u = star[k];
+    starOf(tets, inserted.tet, v, star);
+    for (TetId u : star)
       mesh.region[static_cast<std::size_t>(u)] = region;
-      for (int f = 0; f < 4; ++f)
-      {
-        const FaceRef n = tets.neighbor(u, f);
-        if (tets.vertex(u, f) == v || n == kNoNeighbor)
-          continue;
-        const TetId w = faceTet(n);
-        if (localIndex(tets, w, v) >= 0 && std::find(star.begin(), star.end(), w) == star.end())
-          star.push_back(w);
-      }
-    }
     hint = inserted.tet;
   }
   return "";

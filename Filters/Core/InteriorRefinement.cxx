@@ -9,6 +9,7 @@
 #include "HugePages.h"
 #include "MedianSplit.h"
 #include "MemoryBudget.h"
+#include "MeshTopology.h"
 #include "ParallelPair.h"
 #include "RadixSort.h"
 #include "TriangleDistance.h"
@@ -77,41 +78,6 @@ bool tetHas(const TetMesh& mesh, TetId t, VertexId v)
 {
   const VertexId* tv = &mesh.tets[4 * static_cast<std::size_t>(t)];
   return tv[0] == v || tv[1] == v || tv[2] == v || tv[3] == v;
-}
-
-// The live tets incident to v, by adjacency from t (which contains v). Marks visited tets
-// with scratch bit 2 and clears it again; without marks (`marked` false: a side of MeshHalves,
-// where the other side may read the flags of shared tets) a list search tells the visited
-// ones instead, in the same order (stars hold tens of tets).
-void starOf(TetMesh& mesh, TetId t, VertexId v, std::vector<TetId>& star, bool marked = true)
-{
-  constexpr std::uint8_t kSeen = kScratchBit2;
-  star.clear();
-  star.push_back(t);
-  if (marked)
-    mesh.flags[t] |= kSeen;
-  for (std::size_t i = 0; i < star.size(); ++i)
-  {
-    const TetId u = star[i];
-    for (int f = 0; f < 4; ++f)
-    {
-      if (mesh.vertex(u, f) == v)
-        continue; // the face opposite v does not contain v
-      const FaceRef n = mesh.neighbor(u, f);
-      if (n == kNoNeighbor)
-        continue;
-      const TetId w = faceTet(n);
-      if (marked ? !(mesh.flags[w] & kSeen) : std::find(star.begin(), star.end(), w) == star.end())
-      {
-        if (marked)
-          mesh.flags[w] |= kSeen;
-        star.push_back(w);
-      }
-    }
-  }
-  if (marked)
-    for (TetId u : star)
-      mesh.flags[u] = static_cast<std::uint8_t>(mesh.flags[u] & ~kSeen);
 }
 
 // Vertices bucketed by size class: class L holds sizes in [base 2^L, base 2^(L+1)) (class 0
@@ -647,11 +613,6 @@ struct Candidate
   TetId tet;
 };
 
-struct WorkspaceDeleter
-{
-  void operator()(InsertionWorkspace* w) const { destroyInsertionWorkspace(w); }
-};
-
 } // namespace
 
 RefinementResult refineInterior(RegionMesh& regionMesh,
@@ -954,7 +915,8 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   result.setupSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - startTime).count();
 
-  std::unique_ptr<InsertionWorkspace, WorkspaceDeleter> workspace(createInsertionWorkspace());
+  std::unique_ptr<InsertionWorkspace, InsertionWorkspaceDeleter> workspace(
+    createInsertionWorkspace());
   std::vector<Candidate> candidates;
   std::vector<TetId> star;
   const double extent = std::max({ hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-300 });

@@ -6,6 +6,7 @@
 
 #include "TetMesh.h"
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -79,6 +80,41 @@ inline int localIndex(const TetMesh& mesh, TetId t, VertexId v)
 
 // All live tets incident to v (empty when v is in no tet).
 void vertexStar(const TetMesh& mesh, VertexTetIndex& index, VertexId v, std::vector<TetId>& star);
+
+// The live tets incident to v, by adjacency from t (which contains v). Marks visited tets
+// with scratch bit 2 and clears it again; without marks (`marked` false: a side of MeshHalves,
+// where the other side may read the flags of shared tets) a list search tells the visited
+// ones instead, in the same order (stars hold tens of tets).
+inline void starOf(TetMesh& mesh, TetId t, VertexId v, std::vector<TetId>& star, bool marked = true)
+{
+  constexpr std::uint8_t kSeen = kScratchBit2;
+  star.clear();
+  star.push_back(t);
+  if (marked)
+    mesh.flags[t] |= kSeen;
+  for (std::size_t i = 0; i < star.size(); ++i)
+  {
+    const TetId u = star[i];
+    for (int f = 0; f < 4; ++f)
+    {
+      if (mesh.vertex(u, f) == v)
+        continue; // the face opposite v does not contain v
+      const FaceRef n = mesh.neighbor(u, f);
+      if (n == kNoNeighbor)
+        continue;
+      const TetId w = faceTet(n);
+      if (marked ? !(mesh.flags[w] & kSeen) : std::find(star.begin(), star.end(), w) == star.end())
+      {
+        if (marked)
+          mesh.flags[w] |= kSeen;
+        star.push_back(w);
+      }
+    }
+  }
+  if (marked)
+    for (TetId u : star)
+      mesh.flags[u] = static_cast<std::uint8_t>(mesh.flags[u] & ~kSeen);
+}
 
 // A tet having edge (a,b), or -1.
 TetId findEdge(const TetMesh& mesh, VertexTetIndex& index, VertexId a, VertexId b);
