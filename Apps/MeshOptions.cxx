@@ -225,12 +225,16 @@ int ParseMeshOptions(int argc, char* argv[], MeshOptions& o)
       ok = ok && *end == '\0' && count >= fewest && (!region || x[4] >= 0);
       if (!ok)
       {
-        std::fprintf(stderr,
-          region ? "tetmesher mesh: --region wants X,Y,Z,ATTRIBUTE or X,Y,Z,ATTRIBUTE,MAXSIZE "
-                   "(finite numbers, MAXSIZE >= 0), not '%s'\n"
-                 : "tetmesher mesh: %s wants a point X,Y,Z of three finite numbers, not '%s'\n",
-          region ? text : arg.c_str(),
-          text);
+        if (region)
+          std::fprintf(stderr,
+            "tetmesher mesh: --region wants X,Y,Z,ATTRIBUTE or X,Y,Z,ATTRIBUTE,MAXSIZE (finite "
+            "numbers, MAXSIZE >= 0), not '%s'\n",
+            text);
+        else
+          std::fprintf(stderr,
+            "tetmesher mesh: %s wants a point X,Y,Z of three finite numbers, not '%s'\n",
+            arg.c_str(),
+            text);
         return 2;
       }
       std::vector<double>& list = region ? o.regionPoints
