@@ -21,7 +21,7 @@ struct RegionMesh
 // Builds the adjacency of `tets` (positively oriented in TetMesh's convention). Faces with
 // no neighbour (the boundary) and faces between tets of different regions (interfaces) are
 // marked constrained on both sides, so insertions and flips never cross or change them.
-// Returns false if a face is shared by more than two tets.
+// Returns false if a face is shared by more than two tets or a tet names no point of `points`.
 bool assembleRegionMesh(const std::vector<double>& points,
   const std::vector<std::int32_t>& tets,
   const std::vector<std::int32_t>& regionIds,

@@ -90,3 +90,12 @@ TEST(MeshAssembly, RefusesAFaceOfThreeTets)
   tetmesher::RegionMesh out;
   EXPECT_FALSE(tetmesher::assembleRegionMesh(points, tets, {}, out));
 }
+
+TEST(MeshAssembly, RefusesAVertexIdWithoutAPoint)
+{
+  std::vector<double> points = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  tetmesher::RegionMesh out;
+  EXPECT_TRUE(tetmesher::assembleRegionMesh(points, { 0, 1, 2, 3 }, {}, out));
+  EXPECT_FALSE(tetmesher::assembleRegionMesh(points, { 0, 1, 2, 4 }, {}, out));
+  EXPECT_FALSE(tetmesher::assembleRegionMesh(points, { 0, 1, -1, 3 }, {}, out));
+}
