@@ -16,7 +16,8 @@
 //     (TetGen's flipnm, two levels deep), kept if the sequence lowers the measure or recovers
 //     the item; else the shell of such an edge is shrunk by 2-3 flips, or one cost-neutral
 //     move is kept if it enables an improving one (one-move lookahead). A stuck edge is
-//     retried with its input triangles added to the measure;
+//     searched again once the mesh around it has changed (another item's flips or Steiner
+//     point), by the edge alone;
 //  2. recovered faces are flagged constrained on both sides, so no later flip or insertion
 //     removes them;
 //  3. a missing edge whose flips are stuck is first recovered, where possible, by refilling
@@ -24,7 +25,8 @@
 //     cone from that end (CavityCone.h): no new point, and it clears flat tets that no flip
 //     or Steiner cavity can take (a flat part of the surface folded by rounding);
 //  4. items still missing get one Steiner point each, by constrained Delaunay insertion
-//     (insertVertex), at a position strictly inside a tet the item cuts: next to the middle
+//     (insertVertex), at a position strictly inside a tet the item cuts (for an edge, cut by
+//     the edge alone or by the edge and its input triangles, in turn): next to the middle
 //     of a mesh edge crossing it (the cavity then swallows that edge's shell), else a tet
 //     centroid. A position on the input surface is never used (exact test). Next round.
 // Work is bounded: per item (maxSteinerPerItem), in total (maxSteinerPoints) and per flip
