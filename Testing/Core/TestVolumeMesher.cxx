@@ -528,3 +528,52 @@ TEST(VolumeMesher, GivenInteriorPointsAreVerticesRightAfterTheInputPoints)
       EXPECT_TRUE(v.tets.empty());
     }
 }
+
+TEST(VolumeMesher, GivenPointsAcrossTheHoleOfATorus)
+{
+  // Each point on the other side of the hole from the one before: the walk from the last
+  // point's tet reaches the boundary every time, so each point is found from a tet near it
+  // (GivenPoints.cxx's WalkSeeds) or by the search of every tet. All are vertices, in order,
+  // exactly where given; a point in the hole is named as outside.
+  const Surface s = torus(1.0, 0.4, 24, 12);
+  const std::int32_t n = s.pointCount();
+  std::vector<double> given;
+  const double pi = 3.14159265358979323846;
+  for (int i = 0; i < 200; ++i)
+  {
+    // Angles that alternate across the hole; radii and heights inside the tube.
+    const double u = 2 * pi * (0.37 * i + (i % 2 ? 0.5 : 0.0));
+    const double r = 1.0 + 0.25 * std::cos(1.7 * i), z = 0.25 * std::sin(2.3 * i);
+    given.insert(given.end(), { r * std::cos(u), r * std::sin(u), z });
+  }
+  std::vector<int> sign(static_cast<std::size_t>(s.triangleCount()), 1);
+  VolumeMeshOptions options;
+  options.refine = false;
+  options.optimize = false;
+  options.interiorPoints = given;
+  const VolumeMeshResult v =
+    meshVolume(s.points.data(), n, s.triangles.data(), s.triangleCount(), options);
+  ASSERT_TRUE(v.ok) << v.error;
+  EXPECT_EQ(checkMesh(s, asMesherResult(v, n), sign, 1), "");
+  std::vector<char> used(v.points.size() / 3, 0);
+  for (std::int32_t id : v.tets)
+    used[static_cast<std::size_t>(id)] = 1;
+  for (std::size_t i = 0; i < given.size() / 3; ++i)
+  {
+    const std::size_t id = static_cast<std::size_t>(n) + i;
+    EXPECT_TRUE(used[id]) << "given point " << i;
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(
+        v.points[3 * id + static_cast<std::size_t>(k)], given[3 * i + static_cast<std::size_t>(k)])
+        << "given point " << i;
+  }
+  // The same points, then one in the hole (the walk and the seeds both fail; so does the
+  // search of every tet).
+  options.interiorPoints.insert(options.interiorPoints.end(), { 0.05, 0.02, 0.0 });
+  const VolumeMeshResult hole =
+    meshVolume(s.points.data(), n, s.triangles.data(), s.triangleCount(), options);
+  EXPECT_FALSE(hole.ok);
+  EXPECT_NE(hole.error.find("interior point 200 (0.05, 0.02, 0) is outside the meshed domain"),
+    std::string::npos)
+    << hole.error;
+}
