@@ -528,10 +528,10 @@ private:
   std::vector<VertexId> ringScratch_;
   std::vector<std::shared_ptr<MemoCaches>> memoPool_;
   FlipCost lastSearchCost_; // the memoized measure of the latest flipUntil
-  // Deep removals that failed, by search (input edge e: e; triangle t: edges + t) and by
-  // edge, with the vertices whose shells they examined (a Failure record): tried again only
-  // once one of those changed, in this flip search or a later one of the same item and
-  // measure (the attempt depends on nothing else).
+  // Deep removals that failed, by search (an input edge alone: 2e; with its triangles:
+  // 2e+1; a triangle: 2 edges + t) and by edge, with the vertices whose shells they examined
+  // (a Failure record): tried again only once one of those changed, in this flip search or a
+  // later one of the same item and measure (the attempt depends on nothing else).
   std::unordered_map<std::size_t, std::unordered_map<std::uint64_t, Failure>> deepFailuresBySearch_;
   std::size_t search_ = 0; // of the current flip search
   // The current flip search's seed and the other end of its segment, when it searches for an
@@ -1559,18 +1559,17 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
     return name.str();
   };
   // Directional flips (DirectionalEdgeRecovery.h), then the refill of a small cavity by a cone
-  // (CavityCone.h), then the flip search for input edge e, by the edge alone. True when the
-  // edge is in the mesh; else the failure is recorded (unless interrupted). The directional
-  // flips recover about half of the edges missing from CAD parts' Delaunay meshes at a few
-  // microseconds each, where the flip search took 40-60 (anchor.off, turbine.off, gear.vtp;
-  // 2026-11-30). The cone shares the search's memoized measure (its pipe is the search's
-  // first), and takes many of the edges whose search would fail at 0.2-0.7 ms. A second
-  // search, measuring the edge's triangles too, ran in later rounds and before Steiner points
-  // until 2026-12-02: on anchor, dragknob, joint, gear, alternator and turbine it recovered 4
-  // edges (all on turbine) and cost 5-13% of the boundary mesh's time on the first four;
-  // without it, over Data/, the fetched corpus and TetGen's test models (230 surfaces), the
-  // same surfaces mesh and Steiner points go 402 -> 412 (HISTORY.md). Steiner placement still
-  // alternates between both measures.
+  // (CavityCone.h), then the flip search for input edge e: by the edge alone, then (withFaces)
+  // with its triangles. True when the edge is in the mesh; else the failure is recorded
+  // (unless interrupted). The directional flips recover about half of the edges missing from
+  // CAD parts' Delaunay meshes at a few microseconds each, where the flip search took 40-60
+  // (anchor.off, turbine.off, gear.vtp; 2026-11-30). The cone shares the search's memoized
+  // measure (its pipe is the search's first), and takes many of the edges whose search would
+  // fail at 0.2-0.7 ms. The search with the triangles runs only just before an edge's Steiner
+  // point (2026-12-02): in the rounds' sweeps too it cost 5-13% of the boundary mesh's time on
+  // anchor, dragknob, joint and gear and recovered almost nothing there, but without it before
+  // the Steiner points the full pipeline's Q min fell on several surfaces (helix_tube 0.277 ->
+  // 0.221, couplingdown 0.039 -> 0.029; work log).
   constexpr int kQuickConeTets = 48;
   auto keepEdge = [this](VertexId p, VertexId q) { return isInputEdge(p, q); };
   auto applyMove = [this](const FlipCandidate& move, bool isFlip23)
@@ -1578,7 +1577,7 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
     replace(move.oldTets, move.newTets);
     ++(isFlip23 ? result_.flips23 : result_.edgeRemovals);
   };
-  auto flipToEdge = [&](std::size_t e)
+  auto flipToEdge = [&](std::size_t e, bool withFaces)
   {
     const VertexId a = edges[e][0], b = edges[e][1];
     auto exists = [&] { return edgePresent(e); };
@@ -1589,7 +1588,9 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
     const FlipCost cost = memoized(alone, mesh_, emptyMemo());
     if (options_.refillCavities && refillEdgeCavity(e, cost, kQuickConeTets) && exists())
       return true;
-    if (flipUntil(a, alone, cost, exists, e))
+    if (flipUntil(a, alone, cost, exists, 2 * e))
+      return true;
+    if (!interrupted_ && withFaces && flipUntil(a, edgeAndFacesCost(e), exists, 2 * e + 1))
       return true;
     if (!interrupted_)
       recordFailure(failures_[e], a, lastSearchCost_);
@@ -1623,7 +1624,7 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
         return result_;
       if (edgePresent(e) || unchangedSince(failures_[e]))
         continue;
-      flipToEdge(e);
+      flipToEdge(e, false);
       if (interrupted_)
         return result_;
     }
@@ -1654,7 +1655,7 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
           face = findFace(mesh_, index_, t[0], t[1], t[2]);
           return face >= 0;
         };
-        if (!flipUntil(t[0], faceCost(t), exists, edges.size() + i) && !interrupted_)
+        if (!flipUntil(t[0], faceCost(t), exists, 2 * edges.size() + i) && !interrupted_)
           recordFailure(failures_[edges.size() + i], t[0], lastSearchCost_);
         if (interrupted_)
           return result_;
@@ -1755,7 +1756,7 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
         // may have freed its flips: search again before placing one for this edge.
         if (!unchangedSince(failures_[e]))
         {
-          if (flipToEdge(e))
+          if (flipToEdge(e, true))
             break;
           if (interrupted_)
             return result_;

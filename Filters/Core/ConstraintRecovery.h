@@ -17,7 +17,8 @@
 //     the item; else the shell of such an edge is shrunk by 2-3 flips, or one cost-neutral
 //     move is kept if it enables an improving one (one-move lookahead). A stuck edge is
 //     searched again once the mesh around it has changed (another item's flips or Steiner
-//     point), by the edge alone;
+//     point), and just before its own Steiner point also with its input triangles added to
+//     the measure;
 //  2. recovered faces are flagged constrained on both sides, so no later flip or insertion
 //     removes them;
 //  3. a missing edge whose flips are stuck is first recovered, where possible, by refilling
