@@ -459,6 +459,32 @@ TEST(VolumeMesher, OptimiserEndsAStageThatNoLongerGains)
 // the n input points, bit-identical, before the boundary mesh's Steiner points, never moved by the
 // optimiser; the boundary stays exact. Points that cannot be vertices strictly inside are errors
 // naming them.
+namespace
+{
+
+// "" when the given points (3 doubles each) are output points n, n+1, ... in order, each a
+// vertex of some tet and bit for bit where it was given; else the first problem.
+std::string givenPointsProblem(const VolumeMeshResult& v,
+  std::int32_t n,
+  const std::vector<double>& given)
+{
+  std::vector<char> used(v.points.size() / 3, 0);
+  for (std::int32_t id : v.tets)
+    used[static_cast<std::size_t>(id)] = 1;
+  for (std::size_t i = 0; i < given.size() / 3; ++i)
+  {
+    const std::size_t id = static_cast<std::size_t>(n) + i;
+    if (id >= used.size() || !used[id])
+      return "given point " + std::to_string(i) + " is not a vertex";
+    for (std::size_t k = 0; k < 3; ++k)
+      if (v.points[3 * id + k] != given[3 * i + k])
+        return "given point " + std::to_string(i) + " moved";
+  }
+  return "";
+}
+
+} // namespace
+
 TEST(VolumeMesher, GivenInteriorPointsAreVerticesRightAfterTheInputPoints)
 {
   const Surface s = twistedTower(8, 6, 0.35, 0.25); // Schonhardt bands: Steiner points
@@ -480,15 +506,7 @@ TEST(VolumeMesher, GivenInteriorPointsAreVerticesRightAfterTheInputPoints)
     std::vector<char> used(v.points.size() / 3, 0);
     for (std::int32_t id : v.tets)
       used[static_cast<std::size_t>(id)] = 1;
-    for (std::size_t i = 0; i < given.size() / 3; ++i)
-    {
-      const std::size_t id = static_cast<std::size_t>(n) + i;
-      EXPECT_TRUE(used[id]) << "given point " << i;
-      for (int k = 0; k < 3; ++k)
-        EXPECT_EQ(v.points[3 * id + static_cast<std::size_t>(k)],
-          given[3 * i + static_cast<std::size_t>(k)])
-          << "given point " << i << " full " << full;
-    }
+    EXPECT_EQ(givenPointsProblem(v, n, given), "") << "full " << full;
     // Every Steiner point (after the given ones) is a vertex too.
     for (std::size_t id = static_cast<std::size_t>(n) + 2;
          id < static_cast<std::size_t>(n) + 2 + static_cast<std::size_t>(v.steinerPoints);
@@ -555,18 +573,7 @@ TEST(VolumeMesher, GivenPointsAcrossTheHoleOfATorus)
     meshVolume(s.points.data(), n, s.triangles.data(), s.triangleCount(), options);
   ASSERT_TRUE(v.ok) << v.error;
   EXPECT_EQ(checkMesh(s, asMesherResult(v, n), sign, 1), "");
-  std::vector<char> used(v.points.size() / 3, 0);
-  for (std::int32_t id : v.tets)
-    used[static_cast<std::size_t>(id)] = 1;
-  for (std::size_t i = 0; i < given.size() / 3; ++i)
-  {
-    const std::size_t id = static_cast<std::size_t>(n) + i;
-    EXPECT_TRUE(used[id]) << "given point " << i;
-    for (int k = 0; k < 3; ++k)
-      EXPECT_EQ(
-        v.points[3 * id + static_cast<std::size_t>(k)], given[3 * i + static_cast<std::size_t>(k)])
-        << "given point " << i;
-  }
+  EXPECT_EQ(givenPointsProblem(v, n, given), "");
   // The same points, then one in the hole (the walk and the seeds both fail; so does the
   // search of every tet).
   options.interiorPoints.insert(options.interiorPoints.end(), { 0.05, 0.02, 0.0 });
