@@ -1624,6 +1624,9 @@ RecoveryResult Recovery::run(const std::function<bool(double)>& progress)
         return result_;
       if (edgePresent(e) || unchangedSince(failures_[e]))
         continue;
+      // The sweeps search by the edge alone; the search with its triangles runs just before
+      // its Steiner point (see flipToEdge). Round 0 alone first (2026-11-29): over Data/ and
+      // TetGen's test models recovery 4.48 -> 4.09 s, Steiner points 447 -> 425.
       flipToEdge(e, false);
       if (interrupted_)
         return result_;
