@@ -1,7 +1,6 @@
 #include "VolumeMesher.h"
 
 #include "GivenPoints.h"
-
 #include "MeshAssembly.h"
 #include "ParallelPair.h"
 #include "SizeField.h"
