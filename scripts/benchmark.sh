@@ -9,6 +9,9 @@
 #   bash scripts/benchmark.sh --mode sized [--cases a,b] [--fine a,b] [--tools ...]
 # runs scripts/benchmark_sized.py instead: the full pipeline at a constant size h, TetMesher
 # vs TetGen -q -a vs Gmsh, into Testing/Benchmarks/results/sized.{md,csv}.
+#   bash scripts/benchmark.sh --mode given [--cases a,b] [--points N | --counts a,b] [--tools ...]
+# runs scripts/benchmark_given.py: many given interior points (TetGen's -i), TetMesher
+# --boundary-only --points vs TetGen -pYi, into Testing/Benchmarks/results/given.{md,csv}.
 # BENCH_BUILD=dir builds and uses the CLI in dir instead of build-bench/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -38,7 +41,8 @@ if [ "${1:-}" = "--mode" ]; then
   case "${2:-}" in
     boundary) ;;
     sized) script=scripts/benchmark_sized.py ;;
-    *) echo "benchmark: --mode boundary|sized" >&2; exit 2 ;;
+    given) script=scripts/benchmark_given.py ;;
+    *) echo "benchmark: --mode boundary|sized|given" >&2; exit 2 ;;
   esac
   shift 2
 fi
