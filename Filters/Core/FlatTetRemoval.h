@@ -15,8 +15,11 @@
 namespace tetmesher
 {
 
-// True when tet (a,b,c,d) (TetMesh order, orient3d > 0) has a volume that is not positive in
-// doubles (tetSignedVolume in VTK order, as TetQuality measures it: the Quality array's 0).
+// True when tet (a,b,c,d) (TetMesh order, orient3d > 0) has a volume that is not positive
+// beyond doubt in doubles (volumeCertainlyPositive in VTK order): the Quality array's 0 (its
+// volume rounds to zero or below as TetQuality evaluates it), and also a tet whose computed
+// volume is positive but within its rounding error (Q ~ 1e-18 on a torus's nearly planar
+// quads), which another evaluation order rounds to zero or below.
 bool flatInDoubles(const TetMesh& mesh, const TetVertices& t);
 
 struct FlatTetRemovalResult

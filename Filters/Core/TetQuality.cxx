@@ -1,5 +1,6 @@
 #include "TetQuality.h"
 
+#include "FilteredPredicates.h"
 #include "ParallelPair.h"
 
 #include <algorithm>
@@ -32,6 +33,27 @@ double dot(const Vec3& u, const Vec3& v)
 double norm(const Vec3& u)
 {
   return std::sqrt(dot(u, u));
+}
+
+// det[p-o, q-o, r-o] has the sign `sign` beyond its rounding error in doubles (the orient3d
+// filter's bound on this very evaluation: differences, 2x2 minors, then the dot product).
+bool signBeyondRounding(const double* o,
+  const double* p,
+  const double* q,
+  const double* r,
+  int sign)
+{
+  const double u[3] = { p[0] - o[0], p[1] - o[1], p[2] - o[2] };
+  const double v[3] = { q[0] - o[0], q[1] - o[1], q[2] - o[2] };
+  const double w[3] = { r[0] - o[0], r[1] - o[1], r[2] - o[2] };
+  const double m[6] = {
+    v[1] * w[2], v[2] * w[1], v[2] * w[0], v[0] * w[2], v[0] * w[1], v[1] * w[0]
+  };
+  const double det = u[0] * (m[0] - m[1]) + u[1] * (m[2] - m[3]) + u[2] * (m[4] - m[5]);
+  const double permanent = std::fabs(u[0]) * (std::fabs(m[0]) + std::fabs(m[1])) +
+    std::fabs(u[1]) * (std::fabs(m[2]) + std::fabs(m[3])) +
+    std::fabs(u[2]) * (std::fabs(m[4]) + std::fabs(m[5]));
+  return sign * det > predicates::bounds::kOrient3d * permanent;
 }
 
 constexpr double kRadToDeg = 57.29577951308232;
@@ -126,6 +148,12 @@ TetShape finish(const RawShape& s, double inradius, double longestEdge)
 }
 
 } // namespace
+
+bool volumeCertainlyPositive(const double* a, const double* b, const double* c, const double* d)
+{
+  // From d the same determinant is det[a-d, b-d, c-d] with the opposite sign.
+  return signBeyondRounding(a, b, c, d, 1) && signBeyondRounding(d, a, b, c, -1);
+}
 
 TetShape measureTet(const double* a, const double* b, const double* c, const double* d)
 {

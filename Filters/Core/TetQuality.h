@@ -42,6 +42,13 @@ inline double tetSignedVolume(const double* a, const double* b, const double* c,
   return (u[0] * x[0] + u[1] * x[1] + u[2] * x[2]) / 6.0;
 }
 
+// True when det[b-a, c-a, d-a] (VTK order) is positive beyond doubt in double precision: both
+// from a (as tetSignedVolume rounds it) and from d, it exceeds its rounding error bound
+// (Shewchuk's orient3d filter: (7 + 56 eps) eps times the sum of the terms' magnitudes). A tet
+// that fails it may round to a zero or negative volume in another evaluation order (a solver's
+// Jacobian, another tool's quality filter) even where tetSignedVolume is positive.
+bool volumeCertainlyPositive(const double* a, const double* b, const double* c, const double* d);
+
 // Shape of the tet (a,b,c,d) in VTK order. Quality is 0 when signedVolume is not positive.
 TetShape measureTet(const double* a, const double* b, const double* c, const double* d);
 

@@ -12,9 +12,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <string>
 
 using namespace tetmesher;
@@ -317,21 +319,29 @@ TEST(BoundaryMesh, LatitudeLongitudeSphere)
 
 // Co-circular surface points (the latitude rings of a sphere, a torus's circles) give the
 // boundary mesh tets that are positive in exact arithmetic but whose volume rounds to zero or
-// below in doubles. With removeFlatTets, flips take most of them out and the boundary mesh
-// keeps every exact property; the count it reports is recounted here through TetQuality,
-// whose Q is 0 exactly for such tets.
+// below in doubles (TetQuality's Q is 0 exactly for them), and many more whose volume is
+// positive in doubles but within its rounding error (Q ~ 1e-18: another evaluation order may
+// round it to zero or below). With removeFlatTets, flips take most of both out, never adding
+// a tet of Q 0, and the boundary mesh keeps every exact property; the count it reports is
+// recounted here on the output.
 TEST(BoundaryMesh, FlatTetsFlippedAway)
 {
-  // Tets whose Quality (TetQuality, in VTK order: the first two vertices swapped) is 0.
+  // Tets whose volume is not positive beyond rounding, and those of them whose Quality
+  // (TetQuality, in VTK order: the first two vertices swapped) is 0.
+  struct Flat
+  {
+    int rounding = 0, qualityZero = 0;
+  };
   auto flatTets = [](const MesherResult& r)
   {
-    int flat = 0;
+    Flat flat;
     for (std::size_t k = 0; k < r.tets.size(); k += 4)
     {
       const double* p[4];
       for (int i = 0; i < 4; ++i)
         p[i] = &r.points[3 * static_cast<std::size_t>(r.tets[k + i])];
-      flat += measureTet(p[1], p[0], p[2], p[3]).quality == 0 ? 1 : 0;
+      flat.rounding += volumeCertainlyPositive(p[1], p[0], p[2], p[3]) ? 0 : 1;
+      flat.qualityZero += measureTet(p[1], p[0], p[2], p[3]).quality == 0 ? 1 : 0;
     }
     return flat;
   };
@@ -343,7 +353,7 @@ TEST(BoundaryMesh, FlatTetsFlippedAway)
   const Case cases[] = { { "uv sphere 100x100", uvSphere(100, 100) },
     { "torus 48x24", torus(1.0, 0.3, 48, 24) },
     { "torus 24x12", torus(1.0, 0.3, 24, 12) } };
-  int before = 0, after = 0;
+  int before = 0, after = 0, zeroBefore = 0, zeroAfter = 0;
   for (const Case& c : cases)
   {
     SCOPED_TRACE(c.name);
@@ -351,21 +361,79 @@ TEST(BoundaryMesh, FlatTetsFlippedAway)
     options.removeFlatTets = true;
     const MesherResult r = meshAndCheck(c.surface, allOutward(c.surface), 1, options);
     ASSERT_TRUE(r.ok);
-    EXPECT_EQ(flatTets(r), r.flatTetsAfter);
+    const Flat left = flatTets(r);
+    EXPECT_EQ(left.rounding, r.flatTetsAfter);
     EXPECT_LE(r.flatTetsAfter, r.flatTetsBefore);
-    std::printf("  %s: flat tets %d -> %d\n", c.name, r.flatTetsBefore, r.flatTetsAfter);
-    before += r.flatTetsBefore;
-    after += r.flatTetsAfter;
     // Off, the same surface keeps them all.
     const MesherResult raw = meshSurface(c.surface.points.data(),
       c.surface.pointCount(),
       c.surface.triangles.data(),
       c.surface.triangleCount());
-    EXPECT_EQ(flatTets(raw), r.flatTetsBefore);
+    const Flat initial = flatTets(raw);
+    EXPECT_EQ(initial.rounding, r.flatTetsBefore);
+    EXPECT_LE(left.qualityZero, initial.qualityZero);
+    std::printf("  %s: flat tets %d -> %d (of them Q 0: %d -> %d)\n",
+      c.name,
+      r.flatTetsBefore,
+      r.flatTetsAfter,
+      initial.qualityZero,
+      left.qualityZero);
+    before += r.flatTetsBefore;
+    after += r.flatTetsAfter;
+    zeroBefore += initial.qualityZero;
+    zeroAfter += left.qualityZero;
   }
-  // The cases have flat tets to remove, and most go.
-  EXPECT_GT(before, 20);
-  EXPECT_LT(3 * after, before);
+  // The cases have flat tets to remove, more within rounding than of Q 0; most of them go
+  // (1372 of 3767 stay, 39 of 233 of Q 0; 2026-12-02).
+  EXPECT_GT(zeroBefore, 20);
+  EXPECT_GT(before, 2 * zeroBefore);
+  EXPECT_LT(2 * after, before);
+  EXPECT_LT(3 * zeroAfter, zeroBefore);
+}
+
+// volumeCertainlyPositive: the sign of VTK's volume when rounding cannot have decided it.
+TEST(BoundaryMesh, VolumeCertainlyPositive)
+{
+  const double a[3] = { 0, 0, 0 }, b[3] = { 1, 0, 0 }, c[3] = { 0, 1, 0 }, d[3] = { 0, 0, 1 };
+  EXPECT_TRUE(volumeCertainlyPositive(a, b, c, d));
+  EXPECT_FALSE(volumeCertainlyPositive(b, a, c, d)); // inverted
+  const double inPlane[3] = { 0.25, 0.5, 0 };
+  EXPECT_FALSE(volumeCertainlyPositive(a, b, c, inPlane)); // flat
+  // Points of the plane z = 0.1 x + 0.7 y, z rounded: coplanar up to rounding. No order of
+  // four is certainly positive, though many have a positive volume in doubles (TetQuality's
+  // Q > 0: what Q = 0 alone misses).
+  std::mt19937_64 gen(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int positiveInDoubles = 0;
+  for (int n = 0; n < 100; ++n)
+  {
+    double q[4][3];
+    for (auto& x : q)
+    {
+      x[0] = u(gen);
+      x[1] = u(gen);
+      x[2] = 0.1 * x[0] + 0.7 * x[1];
+    }
+    int p[4] = { 0, 1, 2, 3 };
+    do
+    {
+      EXPECT_FALSE(volumeCertainlyPositive(q[p[0]], q[p[1]], q[p[2]], q[p[3]]));
+      positiveInDoubles += tetSignedVolume(q[p[0]], q[p[1]], q[p[2]], q[p[3]]) > 0 ? 1 : 0;
+    } while (std::next_permutation(p, p + 4));
+  }
+  EXPECT_GT(positiveInDoubles, 100);
+  // Well-shaped tets: certainly positive exactly when the volume is positive.
+  for (int n = 0; n < 1000; ++n)
+  {
+    double q[4][3];
+    for (auto& x : q)
+      for (double& v : x)
+        v = u(gen);
+    const double volume = tetSignedVolume(q[0], q[1], q[2], q[3]);
+    if (std::fabs(volume) < 1e-6)
+      continue;
+    EXPECT_EQ(volumeCertainlyPositive(q[0], q[1], q[2], q[3]), volume > 0);
+  }
 }
 
 TEST(BoundaryMesh, SlottedRing)
