@@ -336,6 +336,27 @@ def surface_q_bound(pts, tris):
     return float(min(1.0, caps.min()))
 
 
+def rounding_tets(P):
+    """Tets (P: m x 4 x 3) whose volume's sign rounding could decide: |det| within the orient3d
+    filter's error bound ((7 + 56 eps) eps times the sum of the terms' magnitudes), evaluated
+    from vertex 0 and from vertex 3, as TetMesher's volumeCertainlyPositive does (TetQuality.h);
+    either orientation (TetGen's tets are the other way round)."""
+    eps = 2.0 ** -53
+    bound = (7.0 + 56.0 * eps) * eps
+
+    def uncertain(o, p, q, r):
+        u, v, w = p - o, q - o, r - o
+        m = [v[:, 1] * w[:, 2], v[:, 2] * w[:, 1], v[:, 2] * w[:, 0], v[:, 0] * w[:, 2],
+             v[:, 0] * w[:, 1], v[:, 1] * w[:, 0]]
+        det = u[:, 0] * (m[0] - m[1]) + u[:, 1] * (m[2] - m[3]) + u[:, 2] * (m[4] - m[5])
+        per = np.abs(u[:, 0]) * (np.abs(m[0]) + np.abs(m[1])) + \
+            np.abs(u[:, 1]) * (np.abs(m[2]) + np.abs(m[3])) + \
+            np.abs(u[:, 2]) * (np.abs(m[4]) + np.abs(m[5]))
+        return ~(np.abs(det) > bound * per)
+    a, b, c, d = (P[:, k] for k in range(4))
+    return int((uncertain(a, b, c, d) | uncertain(d, a, b, c)).sum())
+
+
 def analyse(case, pts_out, tets):
     """Boundary check, quality, volume. case: dict with pts, tris, expected mult, volume."""
     res = {}
@@ -462,6 +483,7 @@ def analyse(case, pts_out, tets):
     res["dih_min"] = float(dih.min())
     res["dih_max"] = float(dih.max())
     res["flat_tets"] = int((vol6 == 0).sum())
+    res["rounding_tets"] = rounding_tets(P)
     vsum = float(V.sum())
     res["vol_sum"] = vsum
     res["vol_relerr"] = (vsum - case["volume"]) / case["volume"]
@@ -756,7 +778,7 @@ COLS = ["case", "triangles", "input_points", "shells", "surface_q_bound", "tool"
         "time_ratio", "rss_mb", "tets", "tets_ratio", "tets_per_s", "points", "steiner",
         "steiner_on_boundary", "input_points_lost", "boundary_kept", "tri_missing", "tri_wrong_mult",
         "extra_boundary_faces", "nonmanifold_faces", "q_min", "q_mean", "q_lt03", "dih_min",
-        "dih_max", "flat_tets", "vol_sum", "vol_relerr", "error"]
+        "dih_max", "flat_tets", "rounding_tets", "vol_sum", "vol_relerr", "error"]
 
 
 def write_outputs(args, rows, cases, tools, command, started, finished, qhist):
@@ -796,7 +818,8 @@ def write_outputs(args, rows, cases, tools, command, started, finished, qhist):
               "exactly 1 tet (2 for an enclosed shell = an interface), every output boundary face an "
               "input triangle, no Steiner point on the boundary (*bSt*; *St* = all Steiner points). "
               "Q = 2*sqrt(6)*r_in/l_max; *Q<0.3* = share of tets; dihedral min/max in degrees; "
-              "*flat* = tets of zero volume in double arithmetic; "
+              "*flat* = tets of zero volume in double arithmetic (/ tets whose volume is within its "
+              "rounding error: the orient3d filter's bound, from two vertices; see TetQuality.h); "
               "*dV* = (sum of tet volumes - enclosed volume)/enclosed volume.")
     md.append("")
     md.extend(tables_md(rows, tools))
@@ -850,18 +873,19 @@ def tables_md(rows, tools):
     # summary per tool
     md.append("## Summary per tool\n")
     md.append("| tool | success | boundary kept | total time s | median time ratio vs TetMesher | "
-              "median Q min | median Q<0.3 |")
-    md.append("|---|---|---|---|---|---|---|")
+              "median Q min | median Q<0.3 | flat / within rounding, in all |")
+    md.append("|---|---|---|---|---|---|---|---|")
     for t in tools:
         rs = [r for r in rows if r["tool"] == t]
         ok = [r for r in rs if r["success"] == "yes"]
         kept = [r for r in ok if r.get("boundary_kept") == "yes"]
         ratios = [r["time_ratio"] for r in ok if r.get("time_ratio")]
-        md.append("| %s | %d/%d | %d/%d | %.2f | %s | %s | %s |" % (
+        md.append("| %s | %d/%d | %d/%d | %.2f | %s | %s | %s | %d / %d |" % (
             t, len(ok), len(rs), len(kept), len(rs), sum(r["time_s"] for r in rs),
             fmt(statistics.median(ratios), ".2f") if ratios else "",
             fmt(statistics.median([r["q_min"] for r in ok]), ".3f") if ok else "",
-            fmt(statistics.median([r["q_lt03"] for r in ok]), ".1%") if ok else ""))
+            fmt(statistics.median([r["q_lt03"] for r in ok]), ".1%") if ok else "",
+            sum(r.get("flat_tets", 0) for r in ok), sum(r.get("rounding_tets", 0) for r in ok)))
     md.append("")
     md.append("## Per case\n")
     md.append("| case | tris | tool | ok | time s | x TM | RSS MB | tets | x TM | tets/s | bnd | "
@@ -879,7 +903,7 @@ def tables_md(rows, tools):
             ("%d/%d" % (r["tri_missing"], r["extra_boundary_faces"]) if ok and "tri_missing" in r else ""),
             r.get("steiner", "") if ok else "", r.get("steiner_on_boundary", "") if ok else "",
             fmt(r.get("q_min"), ".3f"), fmt(r.get("q_mean"), ".3f"), fmt(r.get("q_lt03"), ".1%"),
-            r.get("flat_tets", "") if ok else "", fmt(r.get("dih_min"), ".2f"), fmt(r.get("dih_max"), ".2f"),
+            ("%s / %s" % (r.get("flat_tets", ""), r.get("rounding_tets", ""))) if ok else "", fmt(r.get("dih_min"), ".2f"), fmt(r.get("dih_max"), ".2f"),
             fmt(r.get("vol_relerr"), ".1e"), r["error"].replace("|", "/")))
     md.append("")
     return md
