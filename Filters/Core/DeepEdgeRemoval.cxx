@@ -34,6 +34,9 @@ void DeepEdgeRemoval::apply(const FlipCandidate& move)
       { mesh_.vertex(t, 0), mesh_.vertex(t, 1), mesh_.vertex(t, 2), mesh_.vertex(t, 3) });
   entry.created = move.newTets;
   replaceTets(mesh_, index_, move.oldTets, move.newTets, &entry.createdIds);
+  if (onCreated)
+    for (TetId t : entry.createdIds)
+      onCreated(t);
   journal.delta += move.newCost - move.oldCost;
   ++journal.moves;
 }
@@ -87,6 +90,9 @@ void DeepEdgeRemoval::undoTo(std::size_t mark, int delta)
     // Moves are undone last first, so every tet a move created is there again.
     assert(std::find(tets.begin(), tets.end(), TetId(-1)) == tets.end());
     replaceTets(mesh_, index_, tets, entry.old, &restoredScratch_);
+    if (onCreated)
+      for (TetId t : restoredScratch_)
+        onCreated(t);
     for (std::size_t i = 0; i < entry.old.size(); ++i)
       restoredIds_.assign(entry.old[i], restoredScratch_[i]);
     spareEntries_.push_back(std::move(journal.entries.back()));

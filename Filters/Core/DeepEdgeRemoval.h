@@ -53,6 +53,9 @@ public:
   // When set, collects the vertices of every shell examined (to tell when a failed attempt
   // could succeed: once one of their tets changed).
   std::vector<VertexId>* seen = nullptr;
+  // When set, called with the id of every tet a move or an undo creates (a caller that keeps
+  // per-tet data, such as regions, fills it in).
+  std::function<void(TetId)> onCreated;
 
   // When set, edge removal candidates are remembered by their edge and ring: attempts that
   // are undone come back to the same shells (boundary recovery: over half of the shells a

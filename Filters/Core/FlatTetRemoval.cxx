@@ -1,5 +1,6 @@
 #include "FlatTetRemoval.h"
 
+#include "DeepEdgeRemoval.h"
 #include "Flips.h"
 #include "TetQuality.h"
 
@@ -116,6 +117,45 @@ FlatTetRemovalResult removeFlatTets(TetMesh& mesh, std::vector<std::int32_t>& te
     return !flatInDoubles(mesh, v) ? 0 : qualityZero(v) ? kQualityZeroWeight : 1;
   };
   pass([&](const TetVertices& v) { return flatInDoubles(mesh, v); }, roundingCost);
+  // Last, each Quality-0 tet left gets the removal of one of its edges by a short sequence of
+  // moves (DeepEdgeRemoval, TetGen's flipnm: one link level, 8 shells) that never raises the
+  // measure above, kept when it lowers it. Over Data/ (boundary only) Quality 0 83 -> 37 for
+  // about 0.5% more instructions on the smooth surfaces; the same for every tet within
+  // rounding also took those 2361 -> 1593, for 8% more on helix_tube (2026-12-02).
+  constexpr int kDeepLevels = 1, kDeepShells = 8;
+  DeepEdgeRemoval deep(mesh, index);
+  std::int32_t region = -1;
+  // Every move stays in the region of the tet it started from (none crosses a constrained
+  // face), undone ones too.
+  deep.onCreated = [&](TetId c)
+  {
+    if (tetRegion.size() < static_cast<std::size_t>(mesh.tetCapacity()))
+      tetRegion.resize(static_cast<std::size_t>(mesh.tetCapacity()), -1);
+    tetRegion[c] = region;
+  };
+  queue.clear();
+  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+    if (inRegion(t) && qualityZero(tetAt(t)))
+      queue.push_back(t);
+  for (TetId t : queue)
+  {
+    if (!inRegion(t) || !qualityZero(tetAt(t)))
+      continue;
+    const TetVertices v = tetAt(t);
+    region = tetRegion[t];
+    bool kept = false;
+    for (int i = 0; i < 4 && !kept; ++i)
+      for (int j = i + 1; j < 4 && !kept; ++j)
+      {
+        deep.resetJournal();
+        int budget = kDeepShells;
+        kept = deep.remove(v[i], v[j], kDeepLevels, roundingCost, budget) && deep.journal.delta < 0;
+        if (kept)
+          result.moves += static_cast<int>(deep.journal.entries.size());
+        else
+          deep.undoTo(0, 0);
+      }
+  }
   result.flatAfter = countFlat();
   return result;
 }

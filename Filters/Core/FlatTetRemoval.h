@@ -26,15 +26,17 @@ struct FlatTetRemovalResult
 {
   int flatBefore = 0; // flat-in-doubles tets with a region, before and after
   int flatAfter = 0;
-  int moves = 0; // 2-3 flips and edge removals made
+  int moves = 0; // 2-3 flips and edge removals kept
 };
 
 // Removes flat-in-doubles tets among those with tetRegion[t] >= 0 (classifyRegions: -1 for the
-// exterior and holes) by 2-3 flips and edge removals that lower the number of such tets where
-// they apply. No vertex is added or moved, constrained faces (input triangles, interfaces) are
-// never flipped, and no move crosses one, so every region and the boundary stay as they were;
-// new tets take the region of the tets they replace (tetRegion grows with the mesh). Each
-// move removes at least one flat tet, so at most flatBefore moves are made.
+// exterior and holes) where flips can: first the Quality-0 ones by 2-3 flips and edge removals
+// that lower their number, then the ones within rounding by such moves that lower their number
+// and add no Quality-0 tet, then each Quality-0 one left by a short flip sequence that does
+// the same (DeepEdgeRemoval). No vertex is added or moved, constrained faces (input triangles,
+// interfaces) are never flipped, and no move crosses one, so every region and the boundary stay
+// as they were; new tets take the region of the tets they replace (tetRegion grows with the
+// mesh). Every kept move lowers a finite measure, and the sequences are bounded, so it ends.
 FlatTetRemovalResult removeFlatTets(TetMesh& mesh, std::vector<std::int32_t>& tetRegion);
 
 } // namespace tetmesher

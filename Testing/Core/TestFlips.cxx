@@ -1,6 +1,9 @@
-// Local transformations (Flips.h), topology edits (MeshTopology.h), Steiner point removal
+// Local transformations (Flips.h), flip sequences (DeepEdgeRemoval.h), topology edits
+// (MeshTopology.h), Steiner point removal
 // (SteinerRemoval.h) and the exact intersection tests of recovery (RecoveryGeometry.h), on
 // small hand-built meshes.
+#include "DeepEdgeRemoval.h"
+#include "Delaunay.h"
 #include "Flips.h"
 #include "MeshTopology.h"
 #include "MeshValidation.h"
@@ -238,6 +241,89 @@ bool positiveTetOf(const double (*p)[3], const double* t[4])
   return orientation != 0;
 }
 } // namespace
+
+// DeepEdgeRemoval::onCreated names every tet that a kept sequence or an undo puts in a slot
+// (a caller's per-tet data, such as FlatTetRemoval's regions, depends on it): after each
+// attempt on the edges of a Delaunay mesh, every live slot whose tet changed was named.
+TEST(DeepEdgeRemoval, OnCreatedNamesEveryNewTet)
+{
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> u(0, 1);
+  TetMesh mesh;
+  for (int i = 0; i < 300; ++i)
+    mesh.addVertex(u(rng), u(rng), u(rng));
+  ASSERT_TRUE(buildDelaunay(mesh).ok);
+  VertexTetIndex index;
+  index.rebuild(mesh);
+  DeepEdgeRemoval deep(mesh, index);
+  std::vector<char> named;
+  deep.onCreated = [&](TetId t)
+  {
+    if (named.size() <= static_cast<std::size_t>(t))
+      named.resize(static_cast<std::size_t>(t) + 1, 0);
+    named[static_cast<std::size_t>(t)] = 1;
+  };
+  auto snapshot = [&]
+  {
+    std::vector<TetVertices> tets(static_cast<std::size_t>(mesh.tetCapacity()), { -1, -1, -1, -1 });
+    for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+      if (!mesh.isDeleted(t))
+        tets[static_cast<std::size_t>(t)] = {
+          mesh.vertex(t, 0), mesh.vertex(t, 1), mesh.vertex(t, 2), mesh.vertex(t, 3)
+        };
+    return tets;
+  };
+  // Every live slot that holds another tet than in `before` was named since.
+  auto unnamedChanges = [&](const std::vector<TetVertices>& before)
+  {
+    int unnamed = 0;
+    for (TetId t = 0; t < mesh.tetCapacity(); ++t)
+    {
+      const std::size_t s = static_cast<std::size_t>(t);
+      const bool changed = !mesh.isDeleted(t) &&
+        (s >= before.size() ||
+          before[s] !=
+            TetVertices{
+              mesh.vertex(t, 0), mesh.vertex(t, 1), mesh.vertex(t, 2), mesh.vertex(t, 3) });
+      if (changed && (s >= named.size() || !named[s]))
+        ++unnamed;
+    }
+    return unnamed;
+  };
+  const FlipCost validity;
+  int removed = 0, undone = 0, tried = 0;
+  for (TetId t = 0; t < mesh.tetCapacity() && tried < 400; t += 7)
+  {
+    if (mesh.isDeleted(t))
+      continue;
+    const VertexId p = mesh.vertex(t, 0), q = mesh.vertex(t, 1);
+    ++tried;
+    named.assign(named.size(), 0);
+    const std::vector<TetVertices> before = snapshot();
+    deep.resetJournal();
+    int budget = 8;
+    const bool ok = deep.remove(p, q, 1, validity, budget);
+    ASSERT_EQ(unnamedChanges(before), 0) << "after removing (" << p << "," << q << ")";
+    // Undo every other success, and every failure, as the callers do.
+    if (ok && removed <= undone)
+    {
+      ++removed;
+      deep.resetJournal();
+      continue;
+    }
+    const std::vector<TetVertices> beforeUndo = snapshot();
+    named.assign(named.size(), 0);
+    deep.undoTo(0, 0);
+    ASSERT_EQ(unnamedChanges(beforeUndo), 0) << "after undoing (" << p << "," << q << ")";
+    undone += ok ? 1 : 0;
+  }
+  EXPECT_EQ(checkOrientation(mesh), "");
+  EXPECT_EQ(checkAdjacency(mesh), "");
+  // Both paths ran often enough to mean something.
+  EXPECT_GT(removed, 20);
+  EXPECT_GT(undone, 20);
+  std::printf("%d edges tried: %d removals kept, %d undone\n", tried, removed, undone);
+}
 
 TEST(RecoveryGeometry, SegmentAndTriangle)
 {
