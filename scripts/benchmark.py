@@ -323,6 +323,134 @@ def run_rounds(jobs, tools, repeat, timeout, slow, log):
     return state
 
 
+def each_result(items, make_job, tools, args, log):
+    """For each item (a case, a case at a size, ...) the tools' jobs make_job(tool, item) -> (cmd,
+    cwd, reader, outs), run by run_rounds; yields (item, tool, job, its run_rounds state)."""
+    for item in items:
+        jobs = {tool: make_job(tool, item) for tool in tools}
+        state = run_rounds(jobs, tools, args.repeat, args.timeout, args.slow, log)
+        for tool in tools:
+            yield item, tool, jobs[tool], state[tool]
+
+
+def add_run_options(ap, tools, name):
+    """The options that benchmark_sized.py and benchmark_given.py share: tools (default `tools`),
+    repeats, time-outs, the CLI, where the results and scratch go, their stem `name`."""
+    ap.add_argument("--tools", default=",".join(tools))
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--slow", type=float, default=2.0)
+    ap.add_argument("--timeout", type=float, default=120.0)
+    ap.add_argument("--tetmesher", default=os.path.join(ROOT, "build-bench", "bin", "tetmesher"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "Testing", "Benchmarks", "results"))
+    ap.add_argument("--work", default=None, help="scratch folder (default: a temporary one)")
+    ap.add_argument("--name", default=name, help="output stem (%s.md, %s.csv)" % (name, name))
+
+
+def chosen_tools(args, known):
+    """--tools as a list, each one of `known` (else exit naming it)."""
+    tools = [t.strip() for t in args.tools.split(",") if t.strip()]
+    for t in tools:
+        if t not in known:
+            sys.exit("unknown tool %s" % t)
+    return tools
+
+
+def md_table(columns, rows, cells):
+    """A markdown table: the header of `columns`, then cells(r) (one string per column) per row."""
+    lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+    for r in rows:
+        lines.append("| " + " | ".join(str(c) for c in cells(r)) + " |")
+    return lines
+
+
+def time_cells(r):
+    """The per-case tables' time, time ratio and RSS cells of row r."""
+    return ("timeout" if r["rc"] == "timeout" else fmt(r["time_s"], ".3f"),
+            fmt(r.get("time_ratio"), ".2f"), fmt(r.get("rss_mb"), ".0f"))
+
+
+def failure_message(rc, msg, timeout):
+    """What a run that left no output said: its error line, else the defects TetMesher lists after
+    its "cannot be meshed:" line, else its last line."""
+    if rc == "timeout":
+        return "time-out after %g s" % timeout
+    lines = [l for l in msg.strip().split("\n") if l.strip()]
+    errl = [l for l in lines if l.startswith("Error")] or \
+        [l for l in lines if "rror" in l or "ERROR" in l or "failed" in l.lower()]
+    # The defects TetMesher lists after its "cannot be meshed:" line, one per line, without the
+    # closing note in brackets (it was all the table showed).
+    head = next((i for i, l in enumerate(lines)
+                 if l.startswith("tetmesher:") and l.rstrip().endswith(":")), None)
+    listed = [l.strip() for l in lines[head + 1:] if not l.strip().startswith("(")] \
+        if head is not None else []
+    err = (errl[0] if errl else "; ".join(listed) if listed
+           else (lines[-1] if lines else "no output")).strip()[:200]
+    return "rc %s: %s" % (rc, err)
+
+
+def command_text(cmd):
+    """A command as the tables show it: paths inside the repository relative to it."""
+    return " ".join(shlex.quote(os.path.relpath(x, ROOT) if os.path.isabs(x) and x.startswith(ROOT)
+                                else x) for x in cmd)
+
+
+def result_row(st, outs, reader, measure, timeout):
+    """The fields every benchmark records for one tool's runs (run_rounds' state `st`): runs,
+    median wall time, peak RSS, exit code; then, when the run left its outputs, measure(pts_out,
+    tets) -> dict of checks merged in, else the error. success: an output with tets."""
+    walls, rsss = st["walls"], st["rsss"]
+    row = dict(rc=st["rc"], runs=len(walls), time_s=statistics.median(walls),
+               rss_mb=(max(rsss) / 1024.0 if rsss else None))
+    present = st["rc"] == 0 and all(os.path.exists(o) for o in outs)
+    err = ""
+    if present:
+        try:
+            pts_out, tets = reader()
+            row.update(measure(pts_out, tets))
+        except Exception as e:  # a broken output is data, too
+            err = "reading/analysing the output failed: %r" % (e,)
+            present = False
+    else:
+        err = failure_message(st["rc"], st["msg"], timeout)
+    row["success"] = "yes" if present and row.get("tets", 0) > 0 else "no"
+    if present and row.get("tets", 0) == 0 and not err:
+        err = "no tetrahedra in the output"
+    row["error"] = err
+    return row
+
+
+def tool_summary(rows, tool):
+    """A tool's rows, those that succeeded, those that kept the boundary, and its time ratios."""
+    rs = [r for r in rows if r["tool"] == tool]
+    ok = [r for r in rs if r["success"] == "yes"]
+    kept = [r for r in ok if r.get("boundary_kept") == "yes"]
+    ratios = [r["time_ratio"] for r in ok if r.get("time_ratio")]
+    return rs, ok, kept, ratios
+
+
+def write_csv(path, cols, rows):
+    """The rows as CSV, floats with 6 significant digits."""
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=cols, extrasaction="ignore")
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: ("%.6g" % v if isinstance(v, float) else v) for k, v in r.items()})
+
+
+def begin_outputs(args, cols, rows, title, mode, started, finished, command):
+    """For benchmark_sized.py and benchmark_given.py: writes the rows to args.out/args.name.csv
+    and returns the first lines of the .md: title, date, machine and its load, the command."""
+    write_csv(os.path.join(args.out, args.name + ".csv"), cols, rows)
+    return [title + "\n",
+            "- date: %s (UTC), %.0f s in all" % (started.strftime("%Y-%m-%d %H:%M"),
+                                                (finished - started).total_seconds()),
+            "- machine: %s; load average at the end %s (the machine is shared with other "
+            "engineers' builds: wall times are noisy, compare ratios within a case)"
+            % (machine(), " ".join("%.2f" % x for x in os.getloadavg())),
+            "- command: `%s` (`bash scripts/benchmark.sh --mode %s ...` builds the CLI and runs "
+            "this)" % (command, mode)]
+
+
 def surface_q_bound(pts, tris):
     """The best Q min a mesh that keeps the surface can have (SurfaceQualityBound.h): a tet on a
     triangle has Q <= 2 sqrt(6) area / longest edge^2; capped at 1."""
@@ -712,56 +840,25 @@ def main():
     command = command.replace(" --tetmesher build-bench/bin/tetmesher", "")  # benchmark.sh's default
     started = datetime.datetime.now(datetime.timezone.utc)
     rows, qhist = [], {}
-    for case in cases:
-        # The repeats go round the tools (run_rounds).
-        jobs = {tool: tool_job(tool, case, work, args.tetmesher) for tool in tools}
-        state = run_rounds(jobs, tools, args.repeat, args.timeout, args.slow, log)
-        for tool in tools:
-            cmd, cwd, reader, outs = jobs[tool]
-            walls, rsss = state[tool]["walls"], state[tool]["rsss"]
-            rc, msg = state[tool]["rc"], state[tool]["msg"]
-            row = dict(case=case["name"], triangles=len(case["tris"]), input_points=len(case["pts"]),
-                       shells=len(case["parent"]), surface_q_bound=case["q_bound"], tool=tool, rc=rc,
-                       runs=len(walls),
-                       time_s=statistics.median(walls), rss_mb=(max(rsss) / 1024.0 if rsss else None))
-            present = rc == 0 and all(os.path.exists(o) for o in outs)
-            err = ""
-            if present:
-                try:
-                    pts_out, tets = reader()
-                    res = analyse(case, pts_out, tets)
-                    Q = res.pop("Q", None)
-                    if case["name"] == args.hist_case and Q is not None:
-                        qhist[tool] = Q
-                    row.update(res)
-                except Exception as e:  # a broken output is data, too
-                    err = "reading/analysing the output failed: %r" % (e,)
-                    present = False
-            elif rc == "timeout":
-                err = "time-out after %g s" % args.timeout
-            else:
-                lines = [l for l in msg.strip().split("\n") if l.strip()]
-                errl = [l for l in lines if l.startswith("Error")] or \
-                    [l for l in lines if "rror" in l or "ERROR" in l or "failed" in l.lower()]
-                # Else the defects TetMesher lists after its "cannot be meshed:" line, one per
-                # line, without the closing note in brackets (it was all the table showed).
-                head = next((i for i, l in enumerate(lines)
-                             if l.startswith("tetmesher:") and l.rstrip().endswith(":")), None)
-                listed = [l.strip() for l in lines[head + 1:] if not l.strip().startswith("(")] \
-                    if head is not None else []
-                err = (errl[0] if errl else "; ".join(listed) if listed
-                       else (lines[-1] if lines else "no output")).strip()[:200]
-                err = "rc %s: %s" % (rc, err)
-            row["success"] = "yes" if present and row.get("tets", 0) > 0 else "no"
-            if present and row.get("tets", 0) == 0 and not err:
-                err = "no tetrahedra in the output"
-            row["error"] = err
-            if row.get("tets") and row["success"] == "yes":
-                row["tets_per_s"] = row["tets"] / row["time_s"]
-            rows.append(row)
-            print("%-22s %-14s %-4s %8.3fs %7s tets  boundary %-3s Qmin %s  %s" % (
-                case["name"], tool, row["success"], row["time_s"], row.get("tets", ""),
-                row.get("boundary_kept", "-"), fmt(row.get("q_min"), ".3f"), err), flush=True)
+    # The repeats go round the tools (run_rounds).
+    for case, tool, (cmd, cwd, reader, outs), st in each_result(
+            cases, lambda tool, case: tool_job(tool, case, work, args.tetmesher), tools, args, log):
+
+        def measure(pts_out, tets):
+            res = analyse(case, pts_out, tets)
+            Q = res.pop("Q", None)
+            if case["name"] == args.hist_case and Q is not None:
+                qhist[tool] = Q
+            return res
+        row = dict(case=case["name"], triangles=len(case["tris"]), input_points=len(case["pts"]),
+                   shells=len(case["parent"]), surface_q_bound=case["q_bound"], tool=tool)
+        row.update(result_row(st, outs, reader, measure, args.timeout))
+        if row.get("tets") and row["success"] == "yes":
+            row["tets_per_s"] = row["tets"] / row["time_s"]
+        rows.append(row)
+        print("%-22s %-14s %-4s %8.3fs %7s tets  boundary %-3s Qmin %s  %s" % (
+            case["name"], tool, row["success"], row["time_s"], row.get("tets", ""),
+            row.get("boundary_kept", "-"), fmt(row.get("q_min"), ".3f"), row["error"]), flush=True)
     finished = datetime.datetime.now(datetime.timezone.utc)
     # ratios vs TetMesher
     ref = {r["case"]: r for r in rows if r["tool"] == "tetmesher" and r["success"] == "yes"}
@@ -876,10 +973,7 @@ def tables_md(rows, tools):
               "median Q min | median Q<0.3 | flat / within rounding, in all |")
     md.append("|---|---|---|---|---|---|---|---|")
     for t in tools:
-        rs = [r for r in rows if r["tool"] == t]
-        ok = [r for r in rs if r["success"] == "yes"]
-        kept = [r for r in ok if r.get("boundary_kept") == "yes"]
-        ratios = [r["time_ratio"] for r in ok if r.get("time_ratio")]
+        rs, ok, kept, ratios = tool_summary(rows, t)
         md.append("| %s | %d/%d | %d/%d | %.2f | %s | %s | %s | %d / %d |" % (
             t, len(ok), len(rs), len(kept), len(rs), sum(r["time_s"] for r in rs),
             fmt(statistics.median(ratios), ".2f") if ratios else "",
@@ -894,9 +988,7 @@ def tables_md(rows, tools):
     for r in rows:
         ok = r["success"] == "yes"
         md.append("| %s | %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
-            r["case"], r["triangles"], r["tool"], r["success"],
-            "timeout" if r["rc"] == "timeout" else fmt(r["time_s"], ".3f"),
-            fmt(r.get("time_ratio"), ".2f"), fmt(r.get("rss_mb"), ".0f"),
+            r["case"], r["triangles"], r["tool"], r["success"], *time_cells(r),
             r.get("tets", "") if ok else "", fmt(r.get("tets_ratio"), ".2f"),
             fmt(r.get("tets_per_s"), ".3g") if ok else "",
             r.get("boundary_kept", "") if ok else "",

@@ -41,7 +41,6 @@ Usage:
 """
 
 import argparse
-import csv
 import datetime
 import os
 import shlex
@@ -199,14 +198,7 @@ def main():
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--margin", type=float, default=1e-4,
                     help="least distance of a point to the surface, x bbox diagonal")
-    ap.add_argument("--tools", default=",".join(TOOLS))
-    ap.add_argument("--repeat", type=int, default=3)
-    ap.add_argument("--slow", type=float, default=2.0)
-    ap.add_argument("--timeout", type=float, default=120.0)
-    ap.add_argument("--tetmesher", default=os.path.join(ROOT, "build-bench", "bin", "tetmesher"))
-    ap.add_argument("--out", default=os.path.join(ROOT, "Testing", "Benchmarks", "results"))
-    ap.add_argument("--work", default=None, help="scratch folder (default: a temporary one)")
-    ap.add_argument("--name", default="given", help="output stem (given.md, given.csv)")
+    B.add_run_options(ap, TOOLS, "given")
     args = ap.parse_args()
     args.tetmesher = os.path.abspath(args.tetmesher)
     names = [c.strip() for c in args.cases.split(",") if c.strip()]
@@ -214,10 +206,7 @@ def main():
     if not counts or min(counts) < 1:
         sys.exit("counts must be positive")
     args.counts_used = counts
-    tools = [t.strip() for t in args.tools.split(",") if t.strip()]
-    for t in tools:
-        if t not in TOOLS:
-            sys.exit("unknown tool %s" % t)
+    tools = B.chosen_tools(args, TOOLS)
     work = args.work or tempfile.mkdtemp(prefix="tetmesher-bench-given-")
     os.makedirs(work, exist_ok=True)
     os.makedirs(args.out, exist_ok=True)
@@ -238,57 +227,35 @@ def main():
             write_node(node, allp[:n])
             runs.append(dict(case=case, n=n, given=allp[:n], label=label, node=node))
     rows = []
-    for run in runs:
+    # The repeats go round the tools (B.run_rounds).
+    for run, tool, (cmd, cwd, reader, outs), st in B.each_result(
+            runs, lambda tool, run: tool_job(tool, run, work, args.tetmesher), tools, args, log):
         case, given = run["case"], run["given"]
         nin = len(case["pts"])
         diag = float(np.linalg.norm(case["pts"].max(0) - case["pts"].min(0)))
-        # The repeats go round the tools (B.run_rounds).
-        jobs = {tool: tool_job(tool, run, work, args.tetmesher) for tool in tools}
-        state = B.run_rounds(jobs, tools, args.repeat, args.timeout, args.slow, log)
-        for tool in tools:
-            cmd, cwd, reader, outs = jobs[tool]
-            walls, rsss = state[tool]["walls"], state[tool]["rsss"]
-            rc, msg = state[tool]["rc"], state[tool]["msg"]
-            row = dict(case=case["name"], given=run["n"], input_points=nin, triangles=len(case["tris"]),
-                       tool=tool, rc=rc, runs=len(walls), time_s=statistics.median(walls),
-                       rss_mb=(max(rsss) / 1024.0 if rsss else None),
-                       command=" ".join(shlex.quote(os.path.relpath(x, ROOT) if os.path.isabs(x) and
-                                                    x.startswith(ROOT) else x) for x in cmd))
-            present = rc == 0 and all(os.path.exists(o) for o in outs)
-            err = ""
-            if present:
-                try:
-                    pts_out, tets = reader()
-                    res = B.analyse(case, pts_out, tets)
-                    res.pop("Q", None)
-                    row.update(res)
-                    row.update(given_check(pts_out, tets, given, nin, diag, tool.startswith("tetmesher")))
-                    # analyse counts the given points among its Steiner points (not input points)
-                    row["steiner"] -= row["given_found"]
-                except Exception as e:  # a broken output is data, too
-                    err = "reading/analysing the output failed: %r" % (e,)
-                    present = False
-            elif rc == "timeout":
-                err = "time-out after %g s" % args.timeout
-            else:
-                lines = [l for l in msg.strip().split("\n") if l.strip()]
-                errl = [l for l in lines if l.startswith("Error")] or \
-                    [l for l in lines if "rror" in l or "ERROR" in l or "failed" in l.lower()]
-                err = "rc %s: %s" % (rc, (errl[0] if errl else (lines[-1] if lines else "no output")).strip()[:200])
-            row["success"] = "yes" if present and row.get("tets", 0) > 0 else "no"
-            if present and row.get("tets", 0) == 0 and not err:
-                err = "no tetrahedra in the output"
-            if row["success"] == "yes" and row["given_found"] < run["n"]:
-                err = "%d of %d given points not vertices of the output" % (run["n"] - row["given_found"],
-                                                                             run["n"])
-            if row.get("given_exact") == "no":
-                err = (err + "; " if err else "") + "given points not output %d.. in order, exactly" % nin
-            row["error"] = err
-            rows.append(row)
-            print("%-15s %6d %-14s %-4s %8.3fs %8s tets bnd %-3s St %-6s given %6s %-3s Qmin %6s %s" % (
-                case["name"], run["n"], tool, row["success"], row["time_s"], row.get("tets", ""),
-                row.get("boundary_kept", "-"), row.get("steiner", ""), row.get("given_found", ""),
-                row.get("given_exact", ""), B.fmt(row.get("q_min"), ".3f"), err), flush=True)
+
+        def measure(pts_out, tets):
+            res = B.analyse(case, pts_out, tets)
+            res.pop("Q", None)
+            res.update(given_check(pts_out, tets, given, nin, diag, tool.startswith("tetmesher")))
+            # analyse counts the given points among its Steiner points (not input points)
+            res["steiner"] -= res["given_found"]
+            return res
+        row = dict(case=case["name"], given=run["n"], input_points=nin, triangles=len(case["tris"]),
+                   tool=tool, command=B.command_text(cmd))
+        row.update(B.result_row(st, outs, reader, measure, args.timeout))
+        err = row["error"]
+        if row["success"] == "yes" and row["given_found"] < run["n"]:
+            err = "%d of %d given points not vertices of the output" % (run["n"] - row["given_found"],
+                                                                         run["n"])
+        if row.get("given_exact") == "no":
+            err = (err + "; " if err else "") + "given points not output %d.. in order, exactly" % nin
+        row["error"] = err
+        rows.append(row)
+        print("%-15s %6d %-14s %-4s %8.3fs %8s tets bnd %-3s St %-6s given %6s %-3s Qmin %6s %s" % (
+            case["name"], run["n"], tool, row["success"], row["time_s"], row.get("tets", ""),
+            row.get("boundary_kept", "-"), row.get("steiner", ""), row.get("given_found", ""),
+            row.get("given_exact", ""), B.fmt(row.get("q_min"), ".3f"), err), flush=True)
     finished = datetime.datetime.now(datetime.timezone.utc)
     ref = {(r["case"], r["given"]): r for r in rows if r["tool"] == "tetmesher" and r["success"] == "yes"}
     for r in rows:
@@ -307,21 +274,10 @@ COLS = ["case", "given", "input_points", "triangles", "tool", "success", "rc", "
 
 
 def write_outputs(args, rows, tools, gen, command, started, finished):
-    with open(os.path.join(args.out, args.name + ".csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=COLS, extrasaction="ignore")
-        w.writeheader()
-        for r in rows:
-            w.writerow({k: ("%.6g" % v if isinstance(v, float) else v) for k, v in r.items()})
     v = args.versions
     fmt = B.fmt
-    md = ["# TetMesher side-by-side benchmark, mode *given*: many given interior points (TetGen's -i)\n"]
-    md.append("- date: %s (UTC), %.0f s in all" % (started.strftime("%Y-%m-%d %H:%M"),
-                                                 (finished - started).total_seconds()))
-    md.append("- machine: %s; load average at the end %s (the machine is shared with other "
-              "engineers' builds: wall times are noisy, compare ratios within a case)"
-              % (B.machine(), " ".join("%.2f" % x for x in os.getloadavg())))
-    md.append("- command: `%s` (`bash scripts/benchmark.sh --mode given ...` builds the CLI and runs "
-              "this)" % command)
+    md = B.begin_outputs(args, COLS, rows, "# TetMesher side-by-side benchmark, mode *given*: many given interior points (TetGen's -i)",
+                         "given", started, finished, command)
     md.append("- versions: TetMesher git %s (Release; the tree when the run started), TetGen %s, VTK %s"
               % (v["tetmesher"], v["tetgen"], v["vtk"]))
     md.append("- points: N = %s per case, strictly inside the surface: numpy `default_rng(%d)`, "
@@ -355,32 +311,26 @@ def write_outputs(args, rows, tools, gen, command, started, finished):
               % MATCH_TOL)
     md.append("")
     md.append("## Per case\n")
-    md.append("| case | N | tool | ok | time s | x TM | RSS MB | tets | points | St | bSt | bnd | found | "
-              "exact | Q min | Q mean | flat | dV | note |")
-    md.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
-    for r in rows:
+    def cells(r):
         ok = r["success"] == "yes"
-        md.append("| %s | %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
-            r["case"], r["given"], r["tool"], r["success"],
-            "timeout" if r["rc"] == "timeout" else fmt(r["time_s"], ".3f"),
-            fmt(r.get("time_ratio"), ".2f"), fmt(r.get("rss_mb"), ".0f"),
-            r.get("tets", "") if ok else "", r.get("points", "") if ok else "",
-            r.get("steiner", "") if ok else "", r.get("steiner_on_boundary", "") if ok else "",
-            r.get("boundary_kept", "") if ok else "",
-            "%d/%d" % (r["given_found"], r["given"]) if ok else "", r.get("given_exact", "") if ok else "",
-            fmt(r.get("q_min"), ".3f"), fmt(r.get("q_mean"), ".3f"), r.get("flat_tets", "") if ok else "",
-            fmt(r.get("vol_relerr"), ".1e"), r["error"].replace("|", "/")))
+        return (r["case"], r["given"], r["tool"], r["success"], *B.time_cells(r),
+                r.get("tets", "") if ok else "", r.get("points", "") if ok else "",
+                r.get("steiner", "") if ok else "", r.get("steiner_on_boundary", "") if ok else "",
+                r.get("boundary_kept", "") if ok else "",
+                "%d/%d" % (r["given_found"], r["given"]) if ok else "", r.get("given_exact", "") if ok else "",
+                fmt(r.get("q_min"), ".3f"), fmt(r.get("q_mean"), ".3f"), r.get("flat_tets", "") if ok else "",
+                fmt(r.get("vol_relerr"), ".1e"), r["error"].replace("|", "/"))
+    md.extend(B.md_table(["case", "N", "tool", "ok", "time s", "x TM", "RSS MB", "tets", "points", "St",
+                          "bSt", "bnd", "found", "exact", "Q min", "Q mean", "flat", "dV", "note"],
+                         rows, cells))
     md.append("")
     md.append("## Summary per tool\n")
     md.append("| tool | success | boundary kept | given points all present (TetMesher: and exact) | total time s | "
               "median time ratio vs TetMesher | median Q min |")
     md.append("|---|---|---|---|---|---|---|")
     for t in tools:
-        rs = [r for r in rows if r["tool"] == t]
-        ok = [r for r in rs if r["success"] == "yes"]
-        kept = [r for r in ok if r.get("boundary_kept") == "yes"]
+        rs, ok, kept, ratios = B.tool_summary(rows, t)
         allg = [r for r in ok if r.get("given_found") == r["given"] and r.get("given_exact") != "no"]
-        ratios = [r["time_ratio"] for r in ok if r.get("time_ratio")]
         md.append("| %s | %d/%d | %d/%d | %d/%d | %.2f | %s | %s |" % (
             t, len(ok), len(rs), len(kept), len(rs), len(allg), len(rs), sum(r["time_s"] for r in rs),
             fmt(statistics.median(ratios), ".2f") if ratios else "",

@@ -33,7 +33,6 @@ Usage:
 """
 
 import argparse
-import csv
 import datetime
 import math
 import os
@@ -126,22 +125,12 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--cases", default=",".join(CASES))
     ap.add_argument("--fine", default=",".join(FINE), help="cases also run with h/2")
-    ap.add_argument("--tools", default=",".join(TOOLS))
-    ap.add_argument("--repeat", type=int, default=3)
-    ap.add_argument("--slow", type=float, default=2.0)
-    ap.add_argument("--timeout", type=float, default=120.0)
-    ap.add_argument("--tetmesher", default=os.path.join(ROOT, "build-bench", "bin", "tetmesher"))
-    ap.add_argument("--out", default=os.path.join(ROOT, "Testing", "Benchmarks", "results"))
-    ap.add_argument("--work", default=None)
-    ap.add_argument("--name", default="sized", help="output stem (sized.md, sized.csv)")
+    B.add_run_options(ap, TOOLS, "sized")
     args = ap.parse_args()
     args.tetmesher = os.path.abspath(args.tetmesher)
     names = [c.strip() for c in args.cases.split(",") if c.strip()]
     fine = [c.strip() for c in args.fine.split(",") if c.strip()]
-    tools = [t.strip() for t in args.tools.split(",") if t.strip()]
-    for t in tools:
-        if t not in TOOLS:
-            sys.exit("unknown tool %s" % t)
+    tools = B.chosen_tools(args, TOOLS)
     base = B.load_cases(names)
     runs = []
     for c in base:
@@ -157,52 +146,28 @@ def main():
     # versions before the runs: colleagues commit while it runs, and the binary is what counts
     args.versions = B.versions(args.tetmesher)
     rows = []
-    for case in runs:
+    # The repeats go round the tools (B.run_rounds).
+    for case, tool, (cmd, cwd, reader, outs), st in B.each_result(
+            runs, lambda tool, case: tool_job(tool, case, case["h"], work, args.tetmesher), tools, args, log):
         h = case["h"]
-        # The repeats go round the tools (B.run_rounds).
-        jobs = {tool: tool_job(tool, case, h, work, args.tetmesher) for tool in tools}
-        state = B.run_rounds(jobs, tools, args.repeat, args.timeout, args.slow, log)
-        for tool in tools:
-            cmd, cwd, reader, outs = jobs[tool]
-            walls, rsss = state[tool]["walls"], state[tool]["rsss"]
-            rc, msg = state[tool]["rc"], state[tool]["msg"]
-            row = dict(case=case["name"], h_factor=case["hlabel"], h=h, triangles=len(case["tris"]),
-                       tool=tool, rc=rc, runs=len(walls), time_s=statistics.median(walls),
-                       rss_mb=(max(rsss) / 1024.0 if rsss else None),
-                       command=" ".join(shlex.quote(os.path.relpath(x, ROOT) if os.path.isabs(x) and
-                                                    x.startswith(ROOT) else x) for x in cmd))
-            present = rc == 0 and all(os.path.exists(o) for o in outs)
-            err = ""
-            if present:
-                try:
-                    pts_out, tets = reader()
-                    res = B.analyse(case, pts_out, tets)
-                    res.pop("Q", None)
-                    row.update(res)
-                    if len(tets):
-                        row.update(edge_stats(pts_out, tets, case, h))
-                except Exception as e:
-                    err = "reading/analysing the output failed: %r" % (e,)
-                    present = False
-            elif rc == "timeout":
-                err = "time-out after %g s" % args.timeout
-            else:
-                lines = [l for l in msg.strip().split("\n") if l.strip()]
-                errl = [l for l in lines if l.startswith("Error")] or \
-                    [l for l in lines if "rror" in l or "ERROR" in l or "failed" in l.lower()]
-                err = "rc %s: %s" % (rc, (errl[0] if errl else (lines[-1] if lines else "no output")).strip()[:200])
-            row["success"] = "yes" if present and row.get("tets", 0) > 0 else "no"
-            if present and row.get("tets", 0) == 0 and not err:
-                err = "no tetrahedra in the output"
-            row["error"] = err
-            if row["success"] == "yes":
-                row["tets_per_s"] = row["tets"] / row["time_s"]
-            rows.append(row)
-            print("%-15s h%-4s %-14s %-4s %8.3fs %8s tets bnd %-3s bSt %-5s Qmin %6s dih %6s edges %6s %s" % (
-                case["name"], case["hlabel"], tool, row["success"], row["time_s"], row.get("tets", ""),
-                row.get("boundary_kept", "-"), row.get("steiner_on_boundary", ""),
-                B.fmt(row.get("q_min"), ".3f"), B.fmt(row.get("dih_min"), ".1f"),
-                B.fmt(row.get("edge_in_range"), ".1%"), err), flush=True)
+
+        def measure(pts_out, tets):
+            res = B.analyse(case, pts_out, tets)
+            res.pop("Q", None)
+            if len(tets):
+                res.update(edge_stats(pts_out, tets, case, h))
+            return res
+        row = dict(case=case["name"], h_factor=case["hlabel"], h=h, triangles=len(case["tris"]),
+                   tool=tool, command=B.command_text(cmd))
+        row.update(B.result_row(st, outs, reader, measure, args.timeout))
+        if row["success"] == "yes":
+            row["tets_per_s"] = row["tets"] / row["time_s"]
+        rows.append(row)
+        print("%-15s h%-4s %-14s %-4s %8.3fs %8s tets bnd %-3s bSt %-5s Qmin %6s dih %6s edges %6s %s" % (
+            case["name"], case["hlabel"], tool, row["success"], row["time_s"], row.get("tets", ""),
+            row.get("boundary_kept", "-"), row.get("steiner_on_boundary", ""),
+            B.fmt(row.get("q_min"), ".3f"), B.fmt(row.get("dih_min"), ".1f"),
+            B.fmt(row.get("edge_in_range"), ".1%"), row["error"]), flush=True)
     finished = datetime.datetime.now(datetime.timezone.utc)
     ref = {(r["case"], r["h_factor"]): r for r in rows if r["tool"] == "tetmesher" and r["success"] == "yes"}
     for r in rows:
@@ -224,21 +189,10 @@ COLS = ["case", "h_factor", "h", "triangles", "tool", "success", "rc", "runs", "
 
 
 def write_outputs(args, rows, tools, command, started, finished):
-    with open(os.path.join(args.out, args.name + ".csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=COLS, extrasaction="ignore")
-        w.writeheader()
-        for r in rows:
-            w.writerow({k: ("%.6g" % v if isinstance(v, float) else v) for k, v in r.items()})
     v = args.versions
     fmt = B.fmt
-    md = ["# TetMesher side-by-side benchmark, mode *sized*: the full pipeline at a constant h\n"]
-    md.append("- date: %s (UTC), %.0f s in all" % (started.strftime("%Y-%m-%d %H:%M"),
-                                                 (finished - started).total_seconds()))
-    md.append("- machine: %s; load average at the end %s (the machine is shared with other "
-              "engineers' builds: wall times are noisy, compare ratios within a case)"
-              % (B.machine(), " ".join("%.2f" % x for x in os.getloadavg())))
-    md.append("- command: `%s` (`bash scripts/benchmark.sh --mode sized ...` builds the CLI and runs "
-              "this)" % command)
+    md = B.begin_outputs(args, COLS, rows, "# TetMesher side-by-side benchmark, mode *sized*: the full pipeline at a constant h",
+                         "sized", started, finished, command)
     md.append("- versions: TetMesher git %s (Release; the tree when the run started), TetGen %s, Gmsh %s, VTK %s"
               % (v["tetmesher"], v["tetgen"], v["gmsh"], v["vtk"]))
     md.append("- h: constant per case, the mean length of the input's (unique) boundary edges "
@@ -268,21 +222,20 @@ def write_outputs(args, rows, tools, command, started, finished):
               "the edges not on an input triangle.")
     md.append("")
     md.append("## Per case\n")
-    md.append("| case | h | tool | ok | time s | tets | tets/s | rate x TM | tets x TM | bnd | bSt | "
-              "Q min | Q mean | Q<0.3 | dih min | dih max | e∈h | ie∈h | note |")
-    md.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
-    for r in rows:
+    def cells(r):
         ok = r["success"] == "yes"
-        md.append("| %s | x%s = %.4g | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
-            r["case"], r["h_factor"], r["h"], r["tool"], r["success"],
-            "timeout" if r["rc"] == "timeout" else fmt(r["time_s"], ".3f"),
-            r.get("tets", "") if ok else "", fmt(r.get("tets_per_s"), ".3g") if ok else "",
-            fmt(r.get("rate_ratio"), ".2f"), fmt(r.get("tets_ratio"), ".2f"),
-            r.get("boundary_kept", "") if ok else "", r.get("steiner_on_boundary", "") if ok else "",
-            fmt(r.get("q_min"), ".3f"), fmt(r.get("q_mean"), ".3f"), fmt(r.get("q_lt03"), ".1%"),
-            fmt(r.get("dih_min"), ".1f"), fmt(r.get("dih_max"), ".1f"),
-            fmt(r.get("edge_in_range"), ".1%"), fmt(r.get("inner_edge_in_range"), ".1%"),
-            r["error"].replace("|", "/")))
+        return (r["case"], "x%s = %.4g" % (r["h_factor"], r["h"]), r["tool"], r["success"],
+                B.time_cells(r)[0],
+                r.get("tets", "") if ok else "", fmt(r.get("tets_per_s"), ".3g") if ok else "",
+                fmt(r.get("rate_ratio"), ".2f"), fmt(r.get("tets_ratio"), ".2f"),
+                r.get("boundary_kept", "") if ok else "", r.get("steiner_on_boundary", "") if ok else "",
+                fmt(r.get("q_min"), ".3f"), fmt(r.get("q_mean"), ".3f"), fmt(r.get("q_lt03"), ".1%"),
+                fmt(r.get("dih_min"), ".1f"), fmt(r.get("dih_max"), ".1f"),
+                fmt(r.get("edge_in_range"), ".1%"), fmt(r.get("inner_edge_in_range"), ".1%"),
+                r["error"].replace("|", "/"))
+    md.extend(B.md_table(["case", "h", "tool", "ok", "time s", "tets", "tets/s", "rate x TM", "tets x TM",
+                          "bnd", "bSt", "Q min", "Q mean", "Q<0.3", "dih min", "dih max", "e∈h", "ie∈h",
+                          "note"], rows, cells))
     md.append("")
     md.append("## Summary per tool (medians over the runs that succeeded)\n")
     md.append("| tool | success | boundary kept | total time s | median rate x TM | median Q min | "
