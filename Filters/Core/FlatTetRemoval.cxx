@@ -53,12 +53,17 @@ FlatTetRemovalResult removeFlatTets(TetMesh& mesh, std::vector<std::int32_t>& te
   FlipCandidate candidate, best;
   // One pass: the tets `isFlat` names, by moves that lower `cost` (so at most as many moves
   // as the cost of the tets queued at its start, each lowers it by at least one).
-  auto pass = [&](const std::function<bool(const TetVertices&)>& isFlat, const FlipCost& cost)
+  // The tets of the regions that isFlat names, into `queue`.
+  auto collect = [&](const std::function<bool(const TetVertices&)>& isFlat)
   {
     queue.clear();
     for (TetId t = 0; t < mesh.tetCapacity(); ++t)
       if (inRegion(t) && isFlat(tetAt(t)))
         queue.push_back(t);
+  };
+  auto pass = [&](const std::function<bool(const TetVertices&)>& isFlat, const FlipCost& cost)
+  {
+    collect(isFlat);
     // A queued slot may hold another tet by the time it comes up (slots are reused): it is
     // worked on if that one is flat too.
     for (std::size_t head = 0; head < queue.size(); ++head)
@@ -133,10 +138,7 @@ FlatTetRemovalResult removeFlatTets(TetMesh& mesh, std::vector<std::int32_t>& te
       tetRegion.resize(static_cast<std::size_t>(mesh.tetCapacity()), -1);
     tetRegion[c] = region;
   };
-  queue.clear();
-  for (TetId t = 0; t < mesh.tetCapacity(); ++t)
-    if (inRegion(t) && qualityZero(tetAt(t)))
-      queue.push_back(t);
+  collect(qualityZero);
   for (TetId t : queue)
   {
     if (!inRegion(t) || !qualityZero(tetAt(t)))
