@@ -323,6 +323,61 @@ def run_rounds(jobs, tools, repeat, timeout, slow, log):
     return state
 
 
+# The smallest closed surface, one tetrahedron (outward triangles): each tool's time on it is its
+# process floor (exec, loading, start-up, reading and writing a file), which no meshing speed
+# lowers. Small cases run within a few ms of it, so their wall-time ratios say little about
+# the meshers; times above the floor do.
+FLOOR_POINTS = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+FLOOR_TRIANGLES = [(0, 2, 1), (0, 1, 3), (1, 2, 3), (0, 3, 2)]
+
+
+def floor_case(work):
+    """The one-tetrahedron case, written to work/floor-tet.off."""
+    path = os.path.join(work, "floor-tet.off")
+    pts = np.array(FLOOR_POINTS, dtype=float)
+    tris = np.array(FLOOR_TRIANGLES, dtype=np.int64)
+    write_off(path, pts, tris)
+    return dict(name="floor-tet", path=path, pts=pts, tris=tris, faces=[list(t) for t in tris],
+                sid=np.zeros(len(tris), dtype=np.int64), parent=[-1])
+
+
+def process_floors(tools, make_job, repeat, timeout, log, work):
+    """Median wall time of each tool's job on the one-tetrahedron case (make_job(tool, case)), and
+    of /bin/true (the machine's exec floor, key "exec"), over max(7, 2 * repeat) runs going
+    round the tools. A tool that fails there gets no floor."""
+    case = floor_case(work)
+    jobs = {tool: make_job(tool, case) for tool in tools}
+    jobs["exec"] = (["/bin/true"], work, None, [])
+    names = list(tools) + ["exec"]
+    state = run_rounds(jobs, names, max(7, 2 * repeat), timeout, 1e9, log)
+    return {t: statistics.median(state[t]["walls"]) for t in names if state[t]["rc"] == 0}
+
+
+def above_floor_ratios(rows, floors, ref_tool="tetmesher"):
+    """Per row: the time above its tool's floor (time_above_floor_s) and, beside the reference
+    tool's row of the same case, the ratio of the two (ratio_above_floor; the reference's time
+    above its floor clamped to 1 ms, as a run at the floor has none to divide by)."""
+    ref = {r["case"]: r for r in rows if r["tool"] == ref_tool and r["success"] == "yes"}
+    for r in rows:
+        if r["success"] != "yes" or r["tool"] not in floors:
+            continue
+        r["time_above_floor_s"] = r["time_s"] - floors[r["tool"]]
+    for r in rows:
+        m = ref.get(r["case"])
+        if m and r["tool"] != ref_tool and r.get("time_above_floor_s") is not None \
+                and m.get("time_above_floor_s") is not None:
+            r["ratio_above_floor"] = max(r["time_above_floor_s"], 0.0) / max(m["time_above_floor_s"], 1e-3)
+
+
+def floors_line(floors):
+    """The .md line that gives the floors."""
+    return ("- process floor (median wall time on a single tetrahedron, the whole process: exec, "
+            "start-up, reading, writing; `/bin/true` for the machine's exec alone): %s. *above "
+            "floor*: a run's time minus its tool's floor, and the ratio of two such times (ours "
+            "clamped to at least 1 ms)" % ", ".join(
+                "%s %.1f ms" % ("`/bin/true`" if t == "exec" else t, 1e3 * v) for t, v in floors.items()))
+
+
 def each_result(items, make_job, tools, args, log):
     """For each item (a case, a case at a size, ...) the tools' jobs make_job(tool, item) -> (cmd,
     cwd, reader, outs), run by run_rounds; yields (item, tool, job, its run_rounds state)."""
@@ -839,6 +894,8 @@ def main():
     command = "/usr/bin/python3 scripts/benchmark.py " + " ".join(shlex.quote(a) for a in sys.argv[1:])
     command = command.replace(" --tetmesher build-bench/bin/tetmesher", "")  # benchmark.sh's default
     started = datetime.datetime.now(datetime.timezone.utc)
+    floors = process_floors(tools, lambda tool, case: tool_job(tool, case, work, args.tetmesher),
+                            args.repeat, args.timeout, log, work)
     rows, qhist = [], {}
     # The repeats go round the tools (run_rounds).
     for case, tool, (cmd, cwd, reader, outs), st in each_result(
@@ -867,18 +924,19 @@ def main():
         if m and r["success"] == "yes" and r["tool"] != "tetmesher":
             r["time_ratio"] = r["time_s"] / m["time_s"] if m["time_s"] > 0 else None
             r["tets_ratio"] = r["tets"] / m["tets"]
-    write_outputs(args, rows, cases, tools, command, started, finished, qhist)
+    above_floor_ratios(rows, floors)
+    write_outputs(args, rows, cases, tools, command, started, finished, qhist, floors)
     print("results in %s (scratch: %s)" % (args.out, work))
 
 
 COLS = ["case", "triangles", "input_points", "shells", "surface_q_bound", "tool", "success", "rc", "runs", "time_s",
-        "time_ratio", "rss_mb", "tets", "tets_ratio", "tets_per_s", "points", "steiner",
+        "time_ratio", "time_above_floor_s", "ratio_above_floor", "rss_mb", "tets", "tets_ratio", "tets_per_s", "points", "steiner",
         "steiner_on_boundary", "input_points_lost", "boundary_kept", "tri_missing", "tri_wrong_mult",
         "extra_boundary_faces", "nonmanifold_faces", "q_min", "q_mean", "q_lt03", "dih_min",
         "dih_max", "flat_tets", "rounding_tets", "vol_sum", "vol_relerr", "error"]
 
 
-def write_outputs(args, rows, cases, tools, command, started, finished, qhist):
+def write_outputs(args, rows, cases, tools, command, started, finished, qhist, floors):
     suffix = "" if not (args.quick or args.cases) else "-partial"
     with open(os.path.join(args.out, "corpus%s.csv" % suffix), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=COLS, extrasaction="ignore")
@@ -910,6 +968,7 @@ def write_outputs(args, rows, cases, tools, command, started, finished, qhist):
               "runs (1 run if slower than %g s), the repeats going round the tools (A B C, A B C) "
               "since 2026-11-30 09:40; RSS: peak resident set (`/usr/bin/time -f %%M`); "
               "time-out %g s per run." % (args.repeat, args.slow, args.timeout))
+    md.append(floors_line(floors))
     md.append("- checks (ours, on the output files): *bnd* = boundary kept exactly: output points "
               "mapped to input points by exact coordinate equality, every input triangle a face of "
               "exactly 1 tet (2 for an enclosed shell = an interface), every output boundary face an "
@@ -969,26 +1028,35 @@ def tables_md(rows, tools):
     md.append("")
     # summary per tool
     md.append("## Summary per tool\n")
+    md.append("*above floor*: the same ratio of the times above each tool's process floor (header); "
+              "*TM at most half*: the cases where TetMesher took at most half the tool's time, "
+              "wall / above the floors, of those both meshed.\n")
     md.append("| tool | success | boundary kept | total time s | median time ratio vs TetMesher | "
-              "median Q min | median Q<0.3 | flat / within rounding, in all |")
-    md.append("|---|---|---|---|---|---|---|---|")
+              "above floor | TM at most half | median Q min | median Q<0.3 | flat / within rounding, in all |")
+    md.append("|---|---|---|---|---|---|---|---|---|---|")
     for t in tools:
         rs, ok, kept, ratios = tool_summary(rows, t)
-        md.append("| %s | %d/%d | %d/%d | %.2f | %s | %s | %s | %d / %d |" % (
+        above = [r["ratio_above_floor"] for r in ok if r.get("ratio_above_floor") is not None]
+        half = "%d / %d of %d" % (sum(1 for x in ratios if x >= 2), sum(1 for x in above if x >= 2),
+                                  len(ratios)) if ratios else ""
+        md.append("| %s | %d/%d | %d/%d | %.2f | %s | %s | %s | %s | %s | %d / %d |" % (
             t, len(ok), len(rs), len(kept), len(rs), sum(r["time_s"] for r in rs),
             fmt(statistics.median(ratios), ".2f") if ratios else "",
+            fmt(statistics.median(above), ".2f") if above else "", half,
             fmt(statistics.median([r["q_min"] for r in ok]), ".3f") if ok else "",
             fmt(statistics.median([r["q_lt03"] for r in ok]), ".1%") if ok else "",
             sum(r.get("flat_tets", 0) for r in ok), sum(r.get("rounding_tets", 0) for r in ok)))
     md.append("")
     md.append("## Per case\n")
-    md.append("| case | tris | tool | ok | time s | x TM | RSS MB | tets | x TM | tets/s | bnd | "
+    md.append("| case | tris | tool | ok | time s | x TM | above floor s | x TM | RSS MB | tets | x TM | tets/s | bnd | "
               "miss/extra | St | bSt | Q min | Q mean | Q<0.3 | flat | dih min | dih max | dV | note |")
-    md.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    md.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         ok = r["success"] == "yes"
-        md.append("| %s | %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
-            r["case"], r["triangles"], r["tool"], r["success"], *time_cells(r),
+        wall, ratio, rss = time_cells(r)
+        md.append("| %s | %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            r["case"], r["triangles"], r["tool"], r["success"], wall, ratio,
+            fmt(r.get("time_above_floor_s"), ".4f"), fmt(r.get("ratio_above_floor"), ".2f"), rss,
             r.get("tets", "") if ok else "", fmt(r.get("tets_ratio"), ".2f"),
             fmt(r.get("tets_per_s"), ".3g") if ok else "",
             r.get("boundary_kept", "") if ok else "",
@@ -1015,7 +1083,8 @@ def rewrite_md(out):
                     pass
                 else:
                     x = float(v)
-                    r[k] = int(x) if x.is_integer() and k not in ("time_s", "time_ratio", "rss_mb",
+                    r[k] = int(x) if x.is_integer() and k not in ("time_s", "time_ratio", "time_above_floor_s",
+                                                                   "ratio_above_floor", "rss_mb",
                                                                    "q_min", "q_mean", "q_lt03",
                                                                    "surface_q_bound") else x
             r["error"] = r["error"] or ""
