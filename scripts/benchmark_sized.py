@@ -228,7 +228,7 @@ def write_outputs(args, rows, tools, command, started, finished):
               "a burst of load falls on every tool alike; time-out %g s. *tets/s* = tets / wall time; *rate x TM* "
               "= the tool's tets/s / TetMesher's (default run, same case and h)."
               % (args.repeat, args.slow, args.timeout))
-    md.append(B.floors_line(args.floors) + "; *rate x TM above floor*: the same rate ratio, each "
+    md.append(B.floors_line(args.floors) + "; in the tables, *above floor* is the rate ratio of each "
               "tool's tets per second of its time above its floor (at least 1 ms)")
     md.append("- checks (ours, on the output files, as in corpus.md): *bnd* = boundary kept exactly "
               "(every input triangle a face of the output, every output boundary face an input "
