@@ -1037,7 +1037,8 @@ def tables_md(rows, tools):
     for t in tools:
         rs, ok, kept, ratios = tool_summary(rows, t)
         above = [r["ratio_above_floor"] for r in ok if r.get("ratio_above_floor") is not None]
-        half = "%d / %d of %d" % (sum(1 for x in ratios if x >= 2), sum(1 for x in above if x >= 2),
+        half = "%d / %s of %d" % (sum(1 for x in ratios if x >= 2),
+                                  sum(1 for x in above if x >= 2) if above else "-",
                                   len(ratios)) if ratios else ""
         md.append("| %s | %d/%d | %d/%d | %.2f | %s | %s | %s | %s | %s | %d / %d |" % (
             t, len(ok), len(rs), len(kept), len(rs), sum(r["time_s"] for r in rs),
