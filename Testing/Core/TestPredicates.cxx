@@ -244,6 +244,46 @@ TEST(Predicates, NearlyCoplanarPerturbedByUlps)
   }
 }
 
+// orient3dExact answers from a memo keyed by the sorted points (Predicates.cxx): every order
+// of the same four points, asked again after hits and after evictions (more point sets than
+// the table's 4096 slots), must give the oracle's sign. Exactly coplanar sets (on planes no
+// axis is normal to, dyadic so the points are exact), sets an ulp off, and duplicated points.
+TEST(Predicates, Orient3dExactInEveryOrderAndAgain)
+{
+  Random rnd;
+  std::vector<std::array<Point, 4>> sets;
+  for (int i = 0; i < 6000; ++i)
+  {
+    std::array<Point, 4> q;
+    const double ca = rnd.integer(-8, 8) / 4.0, cb = rnd.integer(-8, 8) / 4.0;
+    for (Point& p : q)
+    {
+      p[0] = rnd.integer(-64, 64) / 8.0;
+      p[1] = rnd.integer(-64, 64) / 8.0;
+      p[2] = ca * p[0] + cb * p[1] + 0.5;
+    }
+    if (i % 3 == 1)
+      q[3] = rnd.nudge(q[3], 1);
+    if (i % 7 == 0)
+      q[2] = q[0];
+    sets.push_back(q);
+  }
+  std::array<int, 4> order = { 0, 1, 2, 3 };
+  for (int round = 0; round < 2; ++round)
+  {
+    for (const auto& q : sets)
+    {
+      std::sort(order.begin(), order.end());
+      do
+      {
+        const Point &a = q[order[0]], &b = q[order[1]], &c = q[order[2]], &d = q[order[3]];
+        ASSERT_EQ(predicates::orient3dExact(a.data(), b.data(), c.data(), d.data()),
+          oracleOrient3d(a, b, c, d));
+      } while (std::next_permutation(order.begin(), order.end()));
+    }
+  }
+}
+
 TEST(Predicates, NearlyCosphericalPerturbedByUlps)
 {
   Random rnd;
