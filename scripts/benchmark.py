@@ -353,20 +353,13 @@ def process_floors(tools, make_job, repeat, timeout, log, work):
     return {t: statistics.median(state[t]["walls"]) for t in names if state[t]["rc"] == 0}
 
 
-def above_floor_ratios(rows, floors, ref_tool="tetmesher"):
-    """Per row: the time above its tool's floor (time_above_floor_s) and, beside the reference
-    tool's row of the same case, the ratio of the two (ratio_above_floor; the reference's time
-    above its floor clamped to 1 ms, as a run at the floor has none to divide by)."""
-    ref = {r["case"]: r for r in rows if r["tool"] == ref_tool and r["success"] == "yes"}
-    for r in rows:
-        if r["success"] != "yes" or r["tool"] not in floors:
-            continue
-        r["time_above_floor_s"] = r["time_s"] - floors[r["tool"]]
-    for r in rows:
-        m = ref.get(r["case"])
-        if m and r["tool"] != ref_tool and r.get("time_above_floor_s") is not None \
-                and m.get("time_above_floor_s") is not None:
-            r["ratio_above_floor"] = max(r["time_above_floor_s"], 0.0) / max(m["time_above_floor_s"], 1e-3)
+def above_floor(r, floors):
+    """Row r's time above its tool's floor (None without one), also stored as
+    time_above_floor_s."""
+    if r["success"] != "yes" or r["tool"] not in floors:
+        return None
+    r["time_above_floor_s"] = r["time_s"] - floors[r["tool"]]
+    return r["time_above_floor_s"]
 
 
 def floors_line(floors):
@@ -917,14 +910,18 @@ def main():
             case["name"], tool, row["success"], row["time_s"], row.get("tets", ""),
             row.get("boundary_kept", "-"), fmt(row.get("q_min"), ".3f"), row["error"]), flush=True)
     finished = datetime.datetime.now(datetime.timezone.utc)
-    # ratios vs TetMesher
+    # ratios vs TetMesher, by wall time and above the floors (ours clamped to 1 ms: a run at the
+    # floor has no time above it to divide by)
     ref = {r["case"]: r for r in rows if r["tool"] == "tetmesher" and r["success"] == "yes"}
     for r in rows:
+        above = above_floor(r, floors)
         m = ref.get(r["case"])
         if m and r["success"] == "yes" and r["tool"] != "tetmesher":
             r["time_ratio"] = r["time_s"] / m["time_s"] if m["time_s"] > 0 else None
             r["tets_ratio"] = r["tets"] / m["tets"]
-    above_floor_ratios(rows, floors)
+            ours = above_floor(m, floors)
+            if above is not None and ours is not None:
+                r["ratio_above_floor"] = max(above, 0.0) / max(ours, 1e-3)
     write_outputs(args, rows, cases, tools, command, started, finished, qhist, floors)
     print("results in %s (scratch: %s)" % (args.out, work))
 

@@ -166,6 +166,10 @@ def main():
         row.update(B.result_row(st, outs, reader, measure, args.timeout))
         if row["success"] == "yes":
             row["tets_per_s"] = row["tets"] / row["time_s"]
+            # Tets per second of the time above the tool's floor (at least 1 ms of it).
+            above = B.above_floor(row, args.floors)
+            if above is not None:
+                row["tets_per_s_above_floor"] = row["tets"] / max(above, 1e-3)
         rows.append(row)
         print("%-15s h%-4s %-14s %-4s %8.3fs %8s tets bnd %-3s bSt %-5s Qmin %6s dih %6s edges %6s %s" % (
             case["name"], case["hlabel"], tool, row["success"], row["time_s"], row.get("tets", ""),
@@ -180,15 +184,8 @@ def main():
             r["time_ratio"] = r["time_s"] / m["time_s"]
             r["tets_ratio"] = r["tets"] / m["tets"]
             r["rate_ratio"] = r["tets_per_s"] / m["tets_per_s"]
-    # Tets per second of the time above the tool's floor (at least 1 ms of it).
-    for r in rows:
-        if r["success"] == "yes" and r["tool"] in args.floors:
-            r["tets_per_s_above_floor"] = r["tets"] / max(r["time_s"] - args.floors[r["tool"]], 1e-3)
-    for r in rows:
-        m = ref.get((r["case"], r["h_factor"]))
-        if m and r["tool"] != "tetmesher" and r.get("tets_per_s_above_floor") \
-                and m.get("tets_per_s_above_floor"):
-            r["rate_ratio_above_floor"] = r["tets_per_s_above_floor"] / m["tets_per_s_above_floor"]
+            if r.get("tets_per_s_above_floor") and m.get("tets_per_s_above_floor"):
+                r["rate_ratio_above_floor"] = r["tets_per_s_above_floor"] / m["tets_per_s_above_floor"]
     write_outputs(args, rows, tools, command, started, finished)
     print("results in %s (scratch: %s)" % (args.out, work))
 

@@ -7,6 +7,7 @@
 #include "Predicates.h"
 
 #include "BinaryParts.h"
+#include "EpochHashTable.h"
 #include "ExpansionArithmetic.h"
 #include "FilteredPredicates.h"
 
@@ -767,17 +768,18 @@ public:
     exchange(0, 2);
     exchange(1, 3);
     exchange(1, 2);
-    Entry key; // its sign unused
+    double key[12];
     for (int k = 0; k < 4; ++k)
-      std::memcpy(key.coords + 3 * k, p[k], 3 * sizeof(double));
-    std::uint64_t h = 0x9e3779b97f4a7c15ull;
-    for (double x : key.coords)
+      std::memcpy(key + 3 * k, p[k], 3 * sizeof(double));
+    // The coordinates' bits folded, then mixed once.
+    std::uint64_t h = 0;
+    for (double x : key)
     {
       std::uint64_t bits;
       std::memcpy(&bits, &x, sizeof bits);
-      h = (h ^ bits) * 0xff51afd7ed558ccdull;
-      h ^= h >> 32;
+      h = (h ^ bits) * 0x9e3779b97f4a7c15ull;
     }
+    h = MixHash64{}(h);
     if (!slots_)
     {
       // Left uninitialised (a large allocation maps zero pages lazily): a small run that asks
@@ -789,9 +791,9 @@ public:
     Entry& slot = slots_[i];
     std::uint64_t& word = used_[i / 64];
     const std::uint64_t bit = std::uint64_t{ 1 } << (i % 64);
-    if (!((word & bit) && std::memcmp(slot.coords, key.coords, sizeof key.coords) == 0))
+    if (!((word & bit) && std::memcmp(slot.coords, key, sizeof key) == 0))
     {
-      std::memcpy(slot.coords, key.coords, sizeof key.coords);
+      std::memcpy(slot.coords, key, sizeof key);
       slot.sign = static_cast<std::int8_t>(orient3dExactStages(p[0], p[1], p[2], p[3]));
       word |= bit;
     }
