@@ -120,7 +120,10 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
   std::vector<std::int32_t> uniqueStart(nv + 1, 0);
   std::vector<VertexId> uniqueTarget;
   std::vector<TetId> uniqueTet;
-  const std::size_t chunkLimit = std::max<std::size_t>(chunkHalfEdges, 1);
+  const std::size_t halfEdges = static_cast<std::size_t>(start_[nv]);
+  const std::size_t chunks = std::max<std::size_t>(maxChunks, 1);
+  const std::size_t chunkLimit =
+    std::max<std::size_t>({ chunkHalfEdges, (halfEdges + chunks - 1) / chunks, 1 });
   for (std::size_t firstBlock = 0; firstBlock < blocks;)
   {
     std::size_t lastBlock = firstBlock + 1;

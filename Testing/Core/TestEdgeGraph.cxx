@@ -112,6 +112,7 @@ TEST(EdgeGraph, ChunksGiveTheSameArrays)
   whole.chunkHalfEdges = std::size_t{ 1 } << 30;
   whole.build(mesh, false);
   expectGraphOf(mesh, whole);
+  chunked.maxChunks = std::size_t{ 1 } << 30; // the chunks as small as asked
   for (std::size_t chunk : { std::size_t{ 1 }, std::size_t{ 5000 }, std::size_t{ 40000 } })
     for (bool twoThreads : { false, true })
     {
@@ -121,4 +122,15 @@ TEST(EdgeGraph, ChunksGiveTheSameArrays)
       EXPECT_EQ(chunked.targets, whole.targets) << chunk << " " << twoThreads;
       EXPECT_EQ(chunked.tetOf, whole.tetOf) << chunk << " " << twoThreads;
     }
+  // At most maxChunks chunks however small chunkHalfEdges is (a chunk is whole blocks of 1024
+  // vertices, so one block may make it larger): the same arrays.
+  for (std::size_t maxChunks : { std::size_t{ 0 }, std::size_t{ 1 }, std::size_t{ 3 } })
+  {
+    chunked.chunkHalfEdges = 1;
+    chunked.maxChunks = maxChunks;
+    chunked.build(mesh, true);
+    EXPECT_EQ(chunked.offsets, whole.offsets) << maxChunks;
+    EXPECT_EQ(chunked.targets, whole.targets) << maxChunks;
+    EXPECT_EQ(chunked.tetOf, whole.tetOf) << maxChunks;
+  }
 }
