@@ -106,7 +106,28 @@ public:
   }
   // Q and the angle are 0 for a tet that is not positive in VTK's orientation.
   bool positive() const { return volume_ > 0; }
-  double q() const
+  double q() const { return qWith(h_); }
+  // Q without the sizes: measureTetQuality's value, bit for bit.
+  double unscaledQ() const { return qWith(nullptr); }
+  // The cosine of the smallest dihedral angle (TetEval::dihCosine).
+  double dihCosine() const
+  {
+    if (!positive())
+      return -2.0;
+    double lowCosine = 2.0;
+    for (const auto& E : kEdge)
+    {
+      const double nk = normalLength_[E[2]], nl = normalLength_[E[3]];
+      if (!(nk > 0 && nl > 0))
+        return -2.0; // degenerate
+      lowCosine =
+        std::min(lowCosine, std::clamp(dot(normal_[E[2]], normal_[E[3]]) / (nk * nl), -1.0, 1.0));
+    }
+    return lowCosine;
+  }
+
+private:
+  double qWith(const double* h) const
   {
     if (!positive())
       return 0.0;
@@ -114,7 +135,6 @@ public:
     // longest edge over h: 0.5 * (l/h + l/h) is l/h exactly, and sqrt and division by h > 0
     // are monotone, so sqrt(max l^2) / h is the same double as max(0.5 * (l/h + l/h)), for
     // one square root and one division instead of six and twelve.
-    const double* h = h_;
     const bool uniform = !h || (h[0] == h[1] && h[0] == h[2] && h[0] == h[3]);
     double longest = 0.0, longestSquared = 0.0;
     for (const auto& E : kEdge)
@@ -147,24 +167,6 @@ public:
     }
     return longest > 0 ? std::min(1.0, kQualityScale * inradius / longest) : 0.0;
   }
-  // The cosine of the smallest dihedral angle (TetEval::dihCosine).
-  double dihCosine() const
-  {
-    if (!positive())
-      return -2.0;
-    double lowCosine = 2.0;
-    for (const auto& E : kEdge)
-    {
-      const double nk = normalLength_[E[2]], nl = normalLength_[E[3]];
-      if (!(nk > 0 && nl > 0))
-        return -2.0; // degenerate
-      lowCosine =
-        std::min(lowCosine, std::clamp(dot(normal_[E[2]], normal_[E[3]]) / (nk * nl), -1.0, 1.0));
-    }
-    return lowCosine;
-  }
-
-private:
   static void sub(const double* u, const double* v, double* r)
   {
     r[0] = u[0] - v[0];
@@ -347,6 +349,20 @@ public:
     TetEval e_;
   };
   TetEval eval(const TetVertices& t) const { return eval(t[0], t[1], t[2], t[3]); }
+  // evalTet(t), and from the same measure the Q without the sizes (measureTetQuality's).
+  TetEval evalTet(TetId t, double& unscaledQ) const
+  {
+    const VertexId a = mesh.vertex(t, 0), b = mesh.vertex(t, 1), c = mesh.vertex(t, 2),
+                   d = mesh.vertex(t, 3);
+    double hh[4];
+    const TetMeasure m(P(b), P(a), P(c), P(d), sizesOf(a, b, c, d, hh));
+    TetEval e;
+    e.q = m.q();
+    e.dihCosine = m.dihCosine();
+    e.score = scoreOf(e);
+    unscaledQ = m.unscaledQ();
+    return e;
+  }
   TetEval evalTet(TetId t) const
   {
     return eval(mesh.vertex(t, 0), mesh.vertex(t, 1), mesh.vertex(t, 2), mesh.vertex(t, 3));

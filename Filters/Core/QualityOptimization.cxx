@@ -143,11 +143,14 @@ private:
   };
 
   // minDihCosine: the least TetEval::dihCosine (dihedralDegrees gives the smallest angle).
+  // unscaledQ: when given, also measureTetQuality of every live tet, in slot order (the
+  // tets are measured, and cached, whether the cache held them or not).
   void summarize(double& minQ,
     double& meanQ,
     double& minDihCosine,
     double& share,
-    int& count) const;
+    int& count,
+    std::vector<double>* unscaledQ = nullptr) const;
   // summarize into r's "before" or "after" statistics, the smallest angle in degrees.
   void summarizeBefore(OptimizationResult& r) const
   {
@@ -155,7 +158,8 @@ private:
       r.meanBefore,
       r.minDihedralBefore,
       r.shareBelowTargetBefore,
-      r.tetsBefore);
+      r.tetsBefore,
+      ctx_.options.recordQualityBefore ? &r.qualityBefore : nullptr);
     r.minDihedralBefore = dihedralDegrees(r.minDihedralBefore);
   }
   void summarizeAfter(OptimizationResult& r) const
@@ -330,22 +334,35 @@ void Optimizer::summarize(double& minQ,
   double& meanQ,
   double& minDihCosine,
   double& share,
-  int& count) const
+  int& count,
+  std::vector<double>* unscaledQ) const
 {
   struct Part
   {
     double minQ = kInf, minDihCosine = kInf, sum = 0;
     int below = 0, count = 0;
+    std::vector<double> unscaled;
   } part[2];
   scanInHalves(
     [&](int k, TetId first, TetId last)
     {
       Part& me = part[k];
+      if (unscaledQ)
+        me.unscaled.reserve(static_cast<std::size_t>(last - first));
       for (TetId t = first; t < last; ++t)
       {
         if (ctx_.mesh.isDeleted(t))
           continue;
-        const TetEval e = ctx_.quality(t);
+        TetEval e;
+        if (unscaledQ)
+        {
+          double plain = 0;
+          e = ctx_.evalTet(t, plain);
+          ctx_.store(t, e);
+          me.unscaled.push_back(plain);
+        }
+        else
+          e = ctx_.quality(t);
         me.minQ = std::min(me.minQ, e.q);
         me.minDihCosine = std::min(me.minDihCosine, e.dihCosine);
         me.sum += e.q;
@@ -354,6 +371,11 @@ void Optimizer::summarize(double& minQ,
         ++me.count;
       }
     });
+  if (unscaledQ)
+  {
+    *unscaledQ = std::move(part[0].unscaled);
+    unscaledQ->insert(unscaledQ->end(), part[1].unscaled.begin(), part[1].unscaled.end());
+  }
   minQ = std::min(part[0].minQ, part[1].minQ);
   minDihCosine = std::min(part[0].minDihCosine, part[1].minDihCosine);
   const double sum = part[0].sum + part[1].sum;
@@ -1013,6 +1035,7 @@ OptimizationResult optimizeMesh(RegionMesh& mesh,
   // Second stage: driven by the smallest dihedral angle, Q guarded by its minimum.
   OptimizationOptions o2 = options;
   o2.measure = QualityMeasure::MinDihedral;
+  o2.recordQualityBefore = false; // the first stage's "before" is the mesh's
   // Worked to a fifth past the target, as the Q stage works to 0.35 for 0.3: the tets it
   // cannot lift that far (on surface triangles) end higher. Torus at h = 0.0638: min
   // dihedral 18.7 deg when worked to 25, 22.1 when worked to 30; fandisk at h x1: 25.0 ->

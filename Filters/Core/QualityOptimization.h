@@ -101,6 +101,10 @@ struct OptimizationOptions
   // by side, on two threads where the machine has two CPUs (the mesh is the same on one),
   // then works what needs both halves in one sequence; fewer, and 0, in one sequence.
   int halvesMinBadTets = 1024;
+  // Gives, in OptimizationResult::qualityBefore, the Q of every live tet before any move
+  // (measureTetQuality's: without the sizes), from the optimiser's own first measure of every
+  // tet instead of a scan of its own.
+  bool recordQualityBefore = false;
 };
 
 struct OptimizationResult
@@ -123,6 +127,9 @@ struct OptimizationResult
   // the minimum nor left fewer tets below the target (a poor surface bounds them).
   int stagesEndedWithoutGain = 0;
   double seconds = 0;
+  // With OptimizationOptions::recordQualityBefore: measureTetQuality of each live tet (VTK's
+  // vertex order, no sizes) before the first move, in slot order; else empty.
+  std::vector<double> qualityBefore;
 };
 
 // Improves the worst elements of `mesh` in place. `vertexSize` (optional, h > 0 per vertex)
