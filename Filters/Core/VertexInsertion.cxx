@@ -1,5 +1,7 @@
 #include "VertexInsertion.h"
 
+#include "SurfaceInput.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -43,7 +45,9 @@ bool growCavity(Context& ctx,
   // Boundary faces of the cavity: (tet, face) and the tet's index in `cavity`.
   thread_local std::vector<std::pair<TetId, int>> faces;
   thread_local std::vector<std::size_t> faceOwner;
-  thread_local std::vector<std::array<VertexId, 2>> edges;
+  // The cone's edges on the cavity boundary, as edgeKey: sorted as integers (as pairs of ids,
+  // compared member-wise, the sort was a fifth of the insertion search on knot1.off at h).
+  thread_local std::vector<std::uint64_t> edges;
   thread_local std::vector<TetVertices> newTets;
   // Per vertex: the iteration stamp of the last boundary face it was seen on (the check
   // that no cavity vertex vanishes, without sorting the faces' vertices).
@@ -110,7 +114,7 @@ bool growCavity(Context& ctx,
       const int* fv = kFaceVertices[f];
       TetVertices nt = { m.vertex(c, fv[0]), m.vertex(c, fv[1]), m.vertex(c, fv[2]), xv };
       for (int e = 0; e < 3; ++e)
-        edges.push_back({ std::min(nt[e], nt[(e + 1) % 3]), std::max(nt[e], nt[(e + 1) % 3]) });
+        edges.push_back(edgeKey(nt[e], nt[(e + 1) % 3]));
       Candidate& cand = candidates[4 * faceOwner[i] + static_cast<std::size_t>(f)];
       if (!cand.known)
       {
