@@ -22,22 +22,22 @@ constexpr TetId kMinTetsForHalves = 65536;
 
 // The chunks' scratch: a quarter more room than asked for, so that the next chunks (of about
 // as many half edges) fit without a copy or fresh pages. The contents are not kept.
-template<typename T>
-void resizeWithRoom(std::vector<T>& v, std::size_t n)
+template<typename Vector>
+void resizeWithRoom(Vector& v, std::size_t n)
 {
   if (v.capacity() < n)
   {
-    std::vector<T> larger;
+    Vector larger;
     larger.reserve(n + n / 4);
     v.swap(larger);
   }
   v.resize(n);
 }
 
-template<typename T>
-void release(std::vector<T>& v)
+template<typename Vector>
+void release(Vector& v)
 {
-  std::vector<T>().swap(v);
+  Vector().swap(v);
 }
 
 // The index in [0, n] that splits the increasing prefix sums `start` (n + 1 entries) nearest
@@ -113,9 +113,11 @@ void EdgeGraph::build(const TetMesh& mesh, bool twoThreads)
   half_[1].stamp.assign(nv, -1);
   unique_.assign(nv, 0);
   // A chunk's half edges, and their smaller vertex within its block.
-  std::vector<VertexId> halfTarget;
-  std::vector<TetId> halfTet;
-  std::vector<std::uint16_t> lowBits;
+  // Not zeroed on resize: step 2 writes every slot of a chunk before anything reads it, and
+  // the two threads then first touch (page faults) the parts they fill.
+  FlatArray<VertexId> halfTarget;
+  FlatArray<TetId> halfTet;
+  FlatArray<std::uint16_t> lowBits;
   // Every vertex's unique larger neighbours and their tets, from uniqueStart[v].
   std::vector<std::int32_t> uniqueStart(nv + 1, 0);
   std::vector<VertexId> uniqueTarget;
