@@ -199,17 +199,21 @@ private:
   double areaSum_ = 0;
 };
 
-// The whole measure; score is left 0.
+// The whole measure; score is left 0. unscaledQ, when given, gets the Q without the sizes
+// from the same measure.
 inline TetEval measureForOptimization(const double* a,
   const double* b,
   const double* c,
   const double* d,
-  const double* h)
+  const double* h,
+  double* unscaledQ = nullptr)
 {
   const TetMeasure m(a, b, c, d, h);
   TetEval e;
   e.q = m.q();
   e.dihCosine = m.dihCosine();
+  if (unscaledQ)
+    *unscaledQ = m.unscaledQ();
   return e;
 }
 
@@ -291,11 +295,12 @@ public:
 
   const double* P(VertexId v) const { return mesh.point(v); }
 
-  TetEval eval(VertexId a, VertexId b, VertexId c, VertexId d) const
+  // unscaledQ, when given: also the Q without the sizes (measureTetQuality's value).
+  TetEval eval(VertexId a, VertexId b, VertexId c, VertexId d, double* unscaledQ = nullptr) const
   {
     // TetMesh tets are positive in Shewchuk's sign; the measure expects VTK's: swap a and b.
     double hh[4];
-    TetEval e = measureForOptimization(P(b), P(a), P(c), P(d), sizesOf(a, b, c, d, hh));
+    TetEval e = measureForOptimization(P(b), P(a), P(c), P(d), sizesOf(a, b, c, d, hh), unscaledQ);
     e.score = scoreOf(e);
     return e;
   }
@@ -349,23 +354,10 @@ public:
     TetEval e_;
   };
   TetEval eval(const TetVertices& t) const { return eval(t[0], t[1], t[2], t[3]); }
-  // evalTet(t), and from the same measure the Q without the sizes (measureTetQuality's).
-  TetEval evalTet(TetId t, double& unscaledQ) const
+  TetEval evalTet(TetId t, double* unscaledQ = nullptr) const
   {
-    const VertexId a = mesh.vertex(t, 0), b = mesh.vertex(t, 1), c = mesh.vertex(t, 2),
-                   d = mesh.vertex(t, 3);
-    double hh[4];
-    const TetMeasure m(P(b), P(a), P(c), P(d), sizesOf(a, b, c, d, hh));
-    TetEval e;
-    e.q = m.q();
-    e.dihCosine = m.dihCosine();
-    e.score = scoreOf(e);
-    unscaledQ = m.unscaledQ();
-    return e;
-  }
-  TetEval evalTet(TetId t) const
-  {
-    return eval(mesh.vertex(t, 0), mesh.vertex(t, 1), mesh.vertex(t, 2), mesh.vertex(t, 3));
+    return eval(
+      mesh.vertex(t, 0), mesh.vertex(t, 1), mesh.vertex(t, 2), mesh.vertex(t, 3), unscaledQ);
   }
   // evalTet through a per-slot cache. The optimiser calls invalidate() for every tet it
   // creates and for the ball of every vertex it moves, so an entry is never stale; do not

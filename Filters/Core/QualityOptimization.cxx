@@ -357,7 +357,7 @@ void Optimizer::summarize(double& minQ,
         if (unscaledQ)
         {
           double plain = 0;
-          e = ctx_.evalTet(t, plain);
+          e = ctx_.evalTet(t, &plain);
           ctx_.store(t, e);
           me.unscaled.push_back(plain);
         }
