@@ -43,14 +43,24 @@ bool coneFromVertex(const TetMesh& mesh,
   std::vector<TetVertices>& cone)
 {
   using Face = std::array<VertexId, 3>;
-  thread_local std::vector<TetId> inside; // the cavity, sorted
+  // The cavity's tets are stamped with this call's epoch: membership in O(1) (a sorted list
+  // searched and grown in place was half of this function's time on CAD parts' recovery).
+  thread_local std::vector<std::uint32_t> stamp;
+  thread_local std::uint32_t epoch = 0;
   thread_local std::vector<Face> apexFaces, boundaryAtApex, unmatched;
   thread_local std::vector<VertexId> vertices, coneVertices;
   thread_local std::vector<std::uint64_t> keptEdges, coneEdges; // edgeKey (SurfaceInput.h)
-  inside = cavity;
-  sortUnique(inside);
-  cavity = inside;
-  auto isInside = [](TetId t) { return std::binary_search(inside.begin(), inside.end(), t); };
+  if (stamp.size() < static_cast<std::size_t>(mesh.tetCapacity()))
+    stamp.resize(static_cast<std::size_t>(mesh.tetCapacity()), 0);
+  if (++epoch == 0)
+  {
+    std::fill(stamp.begin(), stamp.end(), 0);
+    epoch = 1;
+  }
+  sortUnique(cavity);
+  for (TetId t : cavity)
+    stamp[static_cast<std::size_t>(t)] = epoch;
+  auto isInside = [](TetId t) { return stamp[static_cast<std::size_t>(t)] == epoch; };
   // Growth: a boundary face that the apex does not strictly see takes the tet behind it in.
   // One pass over the growing list: a face found visible stays visible, and one that becomes
   // shared later is checked from the tet that came in (both sides of a constrained face are
@@ -78,11 +88,11 @@ bool coneFromVertex(const TetMesh& mesh,
       if (n == kNoNeighbor || mesh.isConstrained(t, f) ||
         static_cast<int>(cavity.size()) >= limits.maxTets)
         return false;
-      inside.insert(std::lower_bound(inside.begin(), inside.end(), faceTet(n)), faceTet(n));
+      stamp[static_cast<std::size_t>(faceTet(n))] = epoch;
       cavity.push_back(faceTet(n));
     }
   }
-  cavity = inside; // the grown cavity, sorted: each tet was added to both once
+  std::sort(cavity.begin(), cavity.end()); // the grown cavity, each tet once
 
   // The cone over the faces the apex sees; the faces through the apex must then pair up
   // (opposite orientations) except for the cavity's own boundary faces through the apex.
