@@ -1485,7 +1485,7 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
           const double p[3] = { origin[0] + (r.i0 + shift) * a,
             origin[1] + (r.j0 + shift) * a,
             origin[2] + (r.k0 + shift) * a };
-          const double d[3] = { p[0] - c[0][0], p[1] - c[0][1], p[2] - c[0][2] };
+          const double d[3] = { p[0] - corners[0][0], p[1] - corners[0][1], p[2] - corners[0][2] };
           r.finite = true;
           for (int c = 0; c < 4 && r.finite; ++c)
           {
@@ -1625,8 +1625,6 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
                       p[d] += jitter * a * ((x >> 11) * (1.0 / 9007199254740992.0) - 0.5);
                     }
                   }
-                  // Closed, with a margin: a point on a face shared by two tets is found from both
-                  // (the key removes the duplicate), never from neither through rounding.
                   if (slab)
                   {
                     const double along =
@@ -1634,6 +1632,8 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
                     if (along < slabLo || along > slabHi)
                       continue;
                   }
+                  // Closed, with a margin: a point on a face shared by two tets is found from both
+                  // (the key removes the duplicate), never from neither through rounding.
                   double b[4];
                   if (!barycentricCoordinates(p, corners, b) || b[0] < -1e-9 || b[1] < -1e-9 ||
                     b[2] < -1e-9 || b[3] < -1e-9)
