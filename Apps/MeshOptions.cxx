@@ -60,7 +60,7 @@ options:
   --stats               print the quality summary of the result
   --compress            zlib-compress the arrays of a .vtu (smaller, slower to write)
   --timings             print the wall time of every stage (start-up, reading, the
-                        mesher's stages, writing)
+                        mesher's stages, writing) and the CPU time of all threads
   --with-vtk            run through VTK (vtkTetMesher, VTK's reader and writer) even
                         where the lean path needs no VTK; the same output, slower start
   --holes               enclosed shells are holes instead of regions of their own

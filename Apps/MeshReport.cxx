@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <dlfcn.h>
 #include <unistd.h>
 
@@ -177,6 +178,13 @@ void StageClock::Print() const
     c = end + 1;
   }
   std::printf("  %8.4f  total after main\n", total);
+  // The CPU time of all the process's threads: over the wall time from main, how many of the
+  // machine's CPUs the run kept busy on average (the stages' second threads, the diagnosis).
+  const double cpu = static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+  const double wall =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - this->ProcessStart).count();
+  if (cpu >= 0 && wall > 0)
+    std::printf("  %8.4f  CPU time of all threads (%.2f CPUs busy on average)\n", cpu, cpu / wall);
 }
 
 void ReportMesh(const MeshOptions& options, StageClock& clock, const MeshSummary& summary)

@@ -129,7 +129,7 @@ with tempfile.TemporaryDirectory() as tmp:
     expect(["mesh", os.path.join(corpus, "sphere.off"), "-o", out, "-q", "--timings"], 0,
            out_has=["timings (wall seconds per stage)", "reading", "boundary recovery",
                     "lattice insertion", "edge splitting", "optimisation", "writing",
-                    "total after main"])
+                    "total after main", "CPU time of all threads"])
     size_raw = os.path.getsize(out)
     expect(["mesh", os.path.join(corpus, "sphere.off"), "-o", out, "-q", "--compress"], 0)
     if not os.path.getsize(out) < size_raw:
