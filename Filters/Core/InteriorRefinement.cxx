@@ -849,25 +849,15 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
   // would carry the faces' sizes across the domain. Every new point's size is bounded too.
   const std::vector<double> wanted(h.begin(), h.end());
   const SurfaceSizes surface = surfaceSizes(mesh, initialCount, graph, sizeOptions.gradation);
-  // The constrained faces' grid (for the distance of candidates to the boundary) is built
-  // beside the floor, the ceiling and the bounding of the initial sizes below: it reads the
-  // mesh alone (knot1.off at h = 0.0309: 1.7% of the instructions, on one thread). Its cells
-  // are as wide as the query radius at the median wanted size, so that a query looks at 2 or
-  // 3 cells per axis; its answers do not depend on the cell size.
-  std::unique_ptr<FaceGrid> faces;
-  auto buildFaceGrid = [&]
-  {
-    if (!(options.minBoundaryDistance > 0 || options.latticeBoundaryDistance > 0))
-      return;
-    std::vector<double> sorted(wanted.begin(), wanted.end());
-    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-    const double radius = std::max({ options.minBoundaryDistance,
-      options.latticeSpacing > 0 ? options.latticeBoundaryDistance : 0.0,
-      0.1 });
-    faces = std::make_unique<FaceGrid>(mesh, radius * sorted[sorted.size() / 2], lo);
-  };
-  BoundarySizeFloor sizeFloor;
-  BoundarySizeCeiling sizeCeiling;
+  const BoundarySizeFloor sizeFloor = makeBoundarySizeFloor(mesh,
+    surface,
+    h,
+    sizeOptions.gradation,
+    options.floorSlope,
+    options.maxFloorRatio,
+    options.maxEdgeRatio);
+  const BoundarySizeCeiling sizeCeiling =
+    makeBoundarySizeCeiling(mesh, surface, sizeOptions.gradation, options.ceilingRatio);
   // hp raised to the floor at p and lowered to the ceiling, within the user's clamps and the
   // region's cap (the ceiling wins where both apply: the smaller feature decides).
   auto boundToSurface = [&](const double* p, double hp, double cap)
@@ -884,28 +874,9 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       hp = std::max(sizeCeiling.at(p, hp), std::min(hp, sizeOptions.minSize));
     return hp;
   };
-  constexpr std::size_t kMinFacesBeside = 1024;
-  runPair(surface.corners.size() / 3 >= kMinFacesBeside && wantTwoThreads(0),
-    [&](int k)
-    {
-      if (k == 1)
-      {
-        buildFaceGrid();
-        return;
-      }
-      sizeFloor = makeBoundarySizeFloor(mesh,
-        surface,
-        h,
-        sizeOptions.gradation,
-        options.floorSlope,
-        options.maxFloorRatio,
-        options.maxEdgeRatio);
-      sizeCeiling =
-        makeBoundarySizeCeiling(mesh, surface, sizeOptions.gradation, options.ceilingRatio);
-      for (VertexId v = 0; v < initialCount; ++v)
-        h[v] = boundToSurface(
-          mesh.point(v), h[v], regionCaps ? vertexCap[static_cast<std::size_t>(v)] : kNoCap);
-    });
+  for (VertexId v = 0; v < initialCount; ++v)
+    h[v] = boundToSurface(
+      mesh.point(v), h[v], regionCaps ? vertexCap[static_cast<std::size_t>(v)] : kNoCap);
   double minH = std::numeric_limits<double>::max();
   for (VertexId v = 0; v < initialCount; ++v)
     minH = std::min({ minH, h[v], wanted[v] });
@@ -921,6 +892,18 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
     for (VertexId v = 0; v < initialCount; ++v)
       if (vertexTet[v] >= 0)
         grid.insert(v, mesh.point(v), h[v]);
+  std::unique_ptr<FaceGrid> faces;
+  if (options.minBoundaryDistance > 0 || options.latticeBoundaryDistance > 0)
+  {
+    // Cells as wide as the query radius at the median size: a query looks at 2 or 3 cells
+    // per axis.
+    std::vector<double> sorted(h.begin(), h.end());
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double radius = std::max({ options.minBoundaryDistance,
+      options.latticeSpacing > 0 ? options.latticeBoundaryDistance : 0.0,
+      0.1 });
+    faces = std::make_unique<FaceGrid>(mesh, radius * sorted[sorted.size() / 2], lo);
+  }
 
   auto lap = [last = std::chrono::steady_clock::now()]() mutable
   {
