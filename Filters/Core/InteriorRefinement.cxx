@@ -1383,8 +1383,11 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
         const double u[3] = { c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2] };
         const double v[3] = { c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2] };
         const double w[3] = { c[3][0] - c[0][0], c[3][1] - c[0][1], c[3][2] - c[0][2] };
-        const double volume6 = std::fabs(u[0] * (v[1] * w[2] - v[2] * w[1]) -
-          u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]));
+        const double vw[3] = {
+          v[1] * w[2] - v[2] * w[1], v[2] * w[0] - v[0] * w[2], v[0] * w[1] - v[1] * w[0]
+        };
+        const double det = u[0] * vw[0] + u[1] * vw[1] + u[2] * vw[2];
+        const double volume6 = std::fabs(det);
         // The coordinates' rounding, ~1e-14 (scale + extent) extent^2 / volume6, stays below
         // 1e-8, far within the tolerance.
         const bool pruneRows = jitter == 0 && std::isfinite(volume6) &&
@@ -1400,7 +1403,23 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
         // rounded with the error of a near-degenerate tet, might have taken some of them).
         double slabNormal[3] = { 0, 0, 0 }, slabLo = 0, slabHi = 0;
         bool slab = false;
-        if (!pruneRows)
+        if (pruneRows)
+        {
+          const double wu[3] = {
+            w[1] * u[2] - w[2] * u[1], w[2] * u[0] - w[0] * u[2], w[0] * u[1] - w[1] * u[0]
+          };
+          const double uv[3] = {
+            u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]
+          };
+          for (int k = 0; k < 3; ++k)
+          {
+            gradient[1][k] = vw[k] / det;
+            gradient[2][k] = wu[k] / det;
+            gradient[3][k] = uv[k] / det;
+            gradient[0][k] = -(gradient[1][k] + gradient[2][k] + gradient[3][k]);
+          }
+        }
+        else
         {
           const double e1[3] = { c[2][0] - c[1][0], c[2][1] - c[1][1], c[2][2] - c[1][2] };
           const double e2[3] = { c[3][0] - c[1][0], c[3][1] - c[1][1], c[3][2] - c[1][2] };
@@ -1419,26 +1438,6 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
             slabLo = std::min(face, apex) - margin;
             slabHi = std::max(face, apex) + margin;
             slab = std::isfinite(slabLo) && std::isfinite(slabHi);
-          }
-        }
-        if (pruneRows)
-        {
-          const double vw[3] = {
-            v[1] * w[2] - v[2] * w[1], v[2] * w[0] - v[0] * w[2], v[0] * w[1] - v[1] * w[0]
-          };
-          const double wu[3] = {
-            w[1] * u[2] - w[2] * u[1], w[2] * u[0] - w[0] * u[2], w[0] * u[1] - w[1] * u[0]
-          };
-          const double uv[3] = {
-            u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]
-          };
-          const double det = u[0] * vw[0] + u[1] * vw[1] + u[2] * vw[2];
-          for (int k = 0; k < 3; ++k)
-          {
-            gradient[1][k] = vw[k] / det;
-            gradient[2][k] = wu[k] / det;
-            gradient[3][k] = uv[k] / det;
-            gradient[0][k] = -(gradient[1][k] + gradient[2][k] + gradient[3][k]);
           }
         }
         // The barycentric coordinates are affine in the lattice indices: those of the box's
