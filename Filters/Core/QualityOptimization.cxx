@@ -139,6 +139,7 @@ private:
     int changes = 0;
     std::int64_t moveCount = 0, moveBudget = -1; // smoothing moves this pass, and their bound
     std::vector<TetId> postponedTets;            // a half's: work that needs the other side
+    std::vector<TetId> insertionTets;            // a half's: stuck tets left for insertion
     std::vector<VertexId> postponedVertices;
   };
 
@@ -264,6 +265,9 @@ private:
   // search that fails again).
   EdgeMemo edgeFailed_, edgeFailedSecondHalf_;
   std::vector<char> queued_; // per tet slot: in this pass's queue
+  // Per tet slot: a half found no move for it and left it for vertex insertion, which only
+  // the sequence after the halves does (passInHalves). Cleared when the slot's tet changes.
+  std::vector<char> insertionOnly_;
   // Smoothing moves in this pass, per vertex (see Worker for the total).
   std::vector<int> passMoves_;
   std::int64_t passMoveBudget_ = -1;    // the bound on a pass's smoothing moves (-1: none)
@@ -604,6 +608,16 @@ void Optimizer::workQueue(Worker& w, const std::vector<TetId>& tets)
     queued_[static_cast<std::size_t>(t)] = 0;
     if (ctx_.mesh.isDeleted(t))
       continue;
+    // A half left it for insertion, its searches having failed: with no insertion left,
+    // searching again would only repeat the half's work (gear.vtp: the whole pass's 6.4k stuck
+    // tets searched again on one thread, for the 16 vertices insertion may add).
+    if (!half && static_cast<std::size_t>(t) < insertionOnly_.size() &&
+      insertionOnly_[static_cast<std::size_t>(t)])
+    {
+      insertionOnly_[static_cast<std::size_t>(t)] = 0;
+      if (!insertionLeft())
+        continue;
+    }
     // A tet lifted to the target by a neighbour's move since it was queued is still worked
     // on while a face neighbour is below the target: improving it makes room for that
     // neighbour (skipping every lifted tet cost up to 3 degrees of minimum dihedral angle on
@@ -643,14 +657,20 @@ void Optimizer::workQueue(Worker& w, const std::vector<TetId>& tets)
       const bool tryInsertion =
         ctx.options.insertion && !insertionPass_ && below && insertionLeft();
       // A half leaves to the sequence after it what needed the other half, and insertion.
-      if (half && (ctx.restricted || (!moved && tryInsertion)))
+      if (half && ctx.restricted)
         w.postponedTets.push_back(t);
+      else if (half && !moved && tryInsertion)
+        w.insertionTets.push_back(t);
       if (!moved && (half || !(tryInsertion && insertVertex(w, t, created))))
         continue;
     }
     ++w.changes;
     for (TetId c : created)
+    {
+      if (!half && static_cast<std::size_t>(c) < insertionOnly_.size())
+        insertionOnly_[static_cast<std::size_t>(c)] = 0;
       enqueueIfBad(c);
+    }
   }
 }
 
@@ -846,10 +866,21 @@ void Optimizer::passInHalves(BadList& bad, bool swept)
   // What needed both halves, worst first: the bad tets on both sides, and what the halves
   // left (tets their moves needed the other side for, or insertion).
   BadList rest;
+  insertionOnly_.assign(static_cast<std::size_t>(mesh.tetCapacity()), 0);
+  for (const Worker& w : sides)
+    for (TetId t : w.insertionTets)
+      if (!mesh.isDeleted(t))
+      {
+        insertionOnly_[static_cast<std::size_t>(t)] = 1;
+        rest.push_back({ ctx_.quality(t).score, t });
+      }
   for (const std::vector<TetId>* list : { &both, &sides[0].postponedTets, &sides[1].postponedTets })
     for (TetId t : *list)
       if (!mesh.isDeleted(t))
+      {
+        insertionOnly_[static_cast<std::size_t>(t)] = 0; // needs the whole search
         rest.push_back({ ctx_.quality(t).score, t });
+      }
   std::sort(rest.begin(), rest.end());
   rest.erase(std::unique(rest.begin(), rest.end()), rest.end());
   std::vector<TetId> restTets;
@@ -857,6 +888,7 @@ void Optimizer::passInHalves(BadList& bad, bool swept)
     restTets.push_back(r.second);
   std::fill(queued_.begin(), queued_.end(), 0); // what the halves' budgets left queued
   workQueue(main_, restTets);
+  insertionOnly_.clear();
 }
 
 OptimizationResult Optimizer::run(const std::function<bool(double)>& progress)
