@@ -16,7 +16,6 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
-#include <dlfcn.h>
 #include <limits>
 #include <unistd.h>
 
@@ -24,21 +23,6 @@ namespace tetmesher
 {
 namespace cli
 {
-
-int CallVtkModule(const char* symbol, const std::function<int(void*)>& call)
-{
-  static void* module = LoadModule("libtetmesherVtk.so");
-  void* function = module ? dlsym(module, symbol) : nullptr;
-  if (!function)
-  {
-    const char* why = dlerror();
-    std::fprintf(stderr,
-      "tetmesher: cannot load its VTK part (libtetmesherVtk.so: %s)\n",
-      why ? why : "missing symbol");
-    return 1;
-  }
-  return call(function);
-}
 
 namespace
 {

@@ -3,6 +3,7 @@
 #include "GmshFile.h"
 #include "MeshExport.h"
 #include "MeshReport.h"
+#include "ModuleLoading.h"
 #include "Report.h"
 #include "SolverSurfaceFiles.h"
 

@@ -7,7 +7,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
-#include <dlfcn.h>
 #include <unistd.h>
 
 namespace tetmesher
@@ -235,22 +234,6 @@ int ReportingFileErrors(const std::function<int()>& command)
     std::fprintf(stderr, "tetmesher: %s\n", e.what());
     return 1;
   }
-}
-
-void* LoadModule(const char* fileName)
-{
-  char self[4096];
-  const ssize_t length = readlink("/proc/self/exe", self, sizeof(self) - 1);
-  if (length > 0)
-  {
-    std::string exe(self, static_cast<std::size_t>(length));
-    std::string dir = TETMESHER_MODULE_DIR;
-    if (dir.empty() || dir[0] != '/')
-      dir = exe.substr(0, exe.find_last_of('/') + 1) + dir;
-    if (void* module = dlopen((dir + "/" + fileName).c_str(), RTLD_NOW | RTLD_LOCAL))
-      return module;
-  }
-  return dlopen(fileName, RTLD_NOW | RTLD_LOCAL);
 }
 
 } // namespace cli

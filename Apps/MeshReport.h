@@ -81,12 +81,5 @@ void ReportMesh(const MeshOptions& options, StageClock& clock, const MeshSummary
 // Runs a command; a FileError it throws becomes "tetmesher: MESSAGE" and exit status 1.
 int ReportingFileErrors(const std::function<int()>& command);
 
-// dlopen of one of tetmesher's modules (RTLD_NOW | RTLD_LOCAL), by its path in the library
-// directory next to the executable (bin/../lib), else by name through the RUNPATH. The path
-// comes first because a bare name is looked up in the RUNPATH of the object that calls
-// dlopen, which under ASan is its interceptor in libasan, not tetmesher. Null on failure
-// (dlerror() says why).
-void* LoadModule(const char* fileName);
-
 } // namespace cli
 } // namespace tetmesher

@@ -31,6 +31,7 @@ Run 'tetmesher COMMAND --help' for the options of a command.
 
 int main(int argc, char* argv[])
 {
+  tetmesher::cli::KeepCommandLine(argc, argv);
   if (argc < 2)
   {
     std::fputs(kUsage, stderr);
