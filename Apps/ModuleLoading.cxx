@@ -1,5 +1,5 @@
-// On its own: the static executable must not link dlopen (it
-// cannot load modules that need the shared C library; VtkTwinCall.cxx runs its twin instead).
+// In a file of its own, so that the static executable, which never loads a module (it hands
+// such work to its dynamic twin, VtkTwinCall.cxx), does not link it.
 #include "ModuleLoading.h"
 #include "InstallLayout.h"
 
