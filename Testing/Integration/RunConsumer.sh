@@ -11,4 +11,10 @@ cmake --build "$work/build" > "$work.build.log" 2>&1 || { cat "$work.build.log";
 "$work/build/consumer"
 ldd "$work/build/consumer" > "$work.ldd.txt"
 grep -q "$work/prefix/lib/libvtkFiltersTetMesher" "$work.ldd.txt" || { echo "consumer is not linked to the installed library"; cat "$work.ldd.txt"; exit 1; }
+# The installed command line: the lean path, then `quality`, which needs VTK (the static
+# executable's dynamic twin in libexec, or the module in lib).
+printf 'OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n' > "$work/tet.off"
+"$work/prefix/bin/tetmesher" mesh "$work/tet.off" -o "$work/tet.vtu" -q
+"$work/prefix/bin/tetmesher" quality "$work/tet.vtu" > "$work.quality.txt" 2>&1 || { echo "installed tetmesher quality failed"; cat "$work.quality.txt"; exit 1; }
+grep -q "1 tetrahedra, 4 points" "$work.quality.txt" || { echo "installed tetmesher quality:"; cat "$work.quality.txt"; exit 1; }
 echo "consumer project: ok"
