@@ -121,6 +121,7 @@ int RunMesh(int argc, char* argv[])
       std::int64_t triangulatedPolygons = 0;
       if (!Triangles(surface, triangles, cellOfTriangle, triangulatedPolygons))
         return MeshWithVtk(options);
+      WarnAboutIneffectiveOptions(options); // the lean path runs the job: no hand-over now
       clock.Lap("reading");
 
       SurfaceMeshInput job;

@@ -46,6 +46,7 @@ public:
 
 int RunMeshWithVtk(const MeshOptions& o)
 {
+  WarnAboutIneffectiveOptions(o);
   return ReportingFileErrors(
     [&o]
     {

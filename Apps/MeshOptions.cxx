@@ -287,25 +287,6 @@ int ParseMeshOptions(int argc, char* argv[], MeshOptions& o)
       outExt.c_str());
     return 2;
   }
-  // The size field only places interior points: without them a size option would be silently
-  // ignored, so say so.
-  if (o.boundaryOnly || !o.refine)
-  {
-    const MeshOptions defaults;
-    const char* sizeOption = o.size > 0   ? "--size"
-      : !o.sizeArray.empty()              ? "--size-array"
-      : !o.background.empty()             ? "--background"
-      : o.sizeScale != defaults.sizeScale ? "--size-scale"
-      : o.minSize > 0                     ? "--min-size"
-      : o.maxSize > 0                     ? "--max-size"
-      : o.gradation != defaults.gradation ? "--gradation"
-                                          : nullptr;
-    if (sizeOption)
-      std::fprintf(stderr,
-        "tetmesher mesh: warning: %s has no effect with %s (no interior points are placed)\n",
-        sizeOption,
-        o.boundaryOnly ? "--boundary-only" : "--no-refine");
-  }
   if (const std::string clash = OverwrittenInput(o.input, o.output); !clash.empty())
   {
     std::fprintf(stderr,
@@ -315,6 +296,28 @@ int ParseMeshOptions(int argc, char* argv[], MeshOptions& o)
     return 2;
   }
   return -1;
+}
+
+void WarnAboutIneffectiveOptions(const MeshOptions& o)
+{
+  // The size field only places interior points: without them a size option would be silently
+  // ignored, so say so.
+  if (!o.boundaryOnly && o.refine)
+    return;
+  const MeshOptions defaults;
+  const char* sizeOption = o.size > 0   ? "--size"
+    : !o.sizeArray.empty()              ? "--size-array"
+    : !o.background.empty()             ? "--background"
+    : o.sizeScale != defaults.sizeScale ? "--size-scale"
+    : o.minSize > 0                     ? "--min-size"
+    : o.maxSize > 0                     ? "--max-size"
+    : o.gradation != defaults.gradation ? "--gradation"
+                                        : nullptr;
+  if (sizeOption)
+    std::fprintf(stderr,
+      "tetmesher mesh: warning: %s has no effect with %s (no interior points are placed)\n",
+      sizeOption,
+      o.boundaryOnly ? "--boundary-only" : "--no-refine");
 }
 
 std::vector<double> InteriorPointsOf(const MeshOptions& o)

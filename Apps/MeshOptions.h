@@ -35,6 +35,11 @@ struct MeshOptions
 // Parses the arguments after `mesh`. Returns -1 when the command should run, else the exit
 // status (0 after --help, 2 on wrong usage, with the message printed).
 int ParseMeshOptions(int argc, char* argv[], MeshOptions& options);
+// Warns on stderr about options that the others make ineffective (a size option with
+// --boundary-only or --no-refine). Called by the path that runs the job (the lean one, or the
+// VTK module's), once it is decided: the static executable hands the VTK path's command line
+// to its twin, which parses it again, so a warning printed at parsing would show twice.
+void WarnAboutIneffectiveOptions(const MeshOptions& options);
 
 // The points of --points FILE (a TetGen .node file), then those of --point, 3 per point.
 // Throws FileError naming the file and line.

@@ -229,6 +229,12 @@ with tempfile.TemporaryDirectory() as tmp:
            err_has=["warning: --size has no effect with --no-refine (no interior points are placed)"])
     expect(["mesh", os.path.join(corpus, "cube.vtp"), "-o", out, "-q", "--boundary-only", "--gradation", "2"],
            0, err_has=["warning: --gradation has no effect with --boundary-only"])
+    # Said once on the VTK path too (the static executable hands that path to its twin, which
+    # parses the command line again).
+    rc, _, err = run("mesh", os.path.join(corpus, "cube.vtp"), "-o", out, "-q", "--no-refine",
+                     "--size", "0.1", "--with-vtk")
+    if rc != 0 or err.count("warning: --size has no effect with --no-refine") != 1:
+        failures.append(f"--with-vtk --no-refine --size: exit {rc}, the warning not once:\n{err}")
     expect(["mesh", os.path.join(corpus, "sphere.off"), "-o", out, "--memory-limit", "-2"], 2,
            err_has=["--memory-limit wants a number >= -1"])
     expect(["mesh", os.path.join(corpus, "sphere.off"), "-o", out, "--size", "-1"], 2,
