@@ -119,7 +119,7 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
 
   if (settings.checkInput)
   {
-    if (wantTwoThreads(0))
+    if (input.triangleCount >= settings.diagnosisBesideMinTriangles && wantTwoThreads(0))
       try
       {
         diagnosisThread = std::thread(diagnose);

@@ -40,6 +40,13 @@ struct SurfaceMeshSettings
   double timeLimit = 0.0;   // seconds; 0: none
   double memoryLimit = 0.0; // MB; 0: the memory available now; < 0: no check
   int numberOfBins = 20;
+  // The input diagnosis runs on a second thread beside the boundary mesh from this many
+  // triangles (and two CPUs); below, first, on the caller's thread. Starting and joining the
+  // thread cost more than it saves on small surfaces: `tetmesher mesh F -o x.vtu -q
+  // --boundary-only`, medians of 80 interleaved runs, one thread against two: sphere.off (320
+  // triangles) 3.61 / 3.88 ms, blob-closed.off (276) 3.49 / 3.65, part.off (346) 10.31 /
+  // 10.45, joint.off (446) 18.20 / 17.98, eight.off (634) 6.51 / 5.76 (2026-12-03).
+  int diagnosisBesideMinTriangles = 512;
 };
 
 struct SurfaceMeshInput
