@@ -1,9 +1,9 @@
-// `tetmesher mesh` without VTK: .off, .stl, .vtp, TetGen's or Gmsh's surface files in, .vtu (or
-// .msh, TetGen files) out, the core's whole job (meshSurface, as vtkTetMesher runs it) in between;
-// polygons are triangulated as vtkTetMesher does (triangulatePolygon). VTK's ~28 libraries are
-// loaded (libtetmesherVtk.so) only for what this path leaves to them: other formats, a background
-// mesh, cells of fewer than 3 points, triangle strips, a .vtp encoding ReadVtp declines, an
-// .stl ReadStl declines, and --with-vtk.
+// `tetmesher mesh` without VTK: .off, .stl, .vtp, TetGen's, Gmsh's or Medit's surface files in,
+// .vtu (or .msh, .mesh, TetGen files) out, the core's whole job (meshSurface, as vtkTetMesher runs
+// it) in between; polygons are triangulated as vtkTetMesher does (triangulatePolygon). VTK's ~28
+// libraries are loaded (libtetmesherVtk.so) only for what this path leaves to them: other formats,
+// a background mesh, cells of fewer than 3 points, triangle strips, a .vtp encoding ReadVtp
+// declines, an .stl ReadStl declines, and --with-vtk.
 #include "CommandLine.h"
 #include "MeshExport.h"
 #include "MeshOptions.h"
@@ -98,7 +98,7 @@ int RunMesh(int argc, char* argv[])
   const std::string outExt = LowerExtension(options.output);
   if (options.withVtk || (outExt != ".vtu" && !IsExportExtension(outExt)) ||
     !options.background.empty() ||
-    (inExt != ".off" && inExt != ".vtp" && inExt != ".stl" && inExt != ".msh" &&
+    (inExt != ".off" && inExt != ".vtp" && inExt != ".stl" && inExt != ".msh" && inExt != ".mesh" &&
       !IsTetGenSurfaceExtension(inExt)))
     return MeshWithVtk(options);
   return ReportingFileErrors(
@@ -113,6 +113,8 @@ int RunMesh(int argc, char* argv[])
         surface = ReadTetGenSurface(options.input);
       else if (inExt == ".msh")
         surface = ReadGmshSurface(options.input);
+      else if (inExt == ".mesh")
+        surface = ReadMeditSurface(options.input);
       else if (inExt == ".stl" ? !ReadStl(options.input, surface)
                                : !ReadVtp(options.input, surface))
         return MeshWithVtk(options);

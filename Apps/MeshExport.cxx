@@ -146,15 +146,16 @@ std::int64_t RegionOf(const ExportMesh& mesh, std::int64_t t)
   return mesh.regionIds ? mesh.regionIds[t] : 0;
 }
 
-// Gmsh's physical tags are positive integers: the region attributes when they all are.
-bool AttributesAreTags(const ExportMesh& mesh)
+// Whether every region attribute is a whole number in [lowest, 2^31 - 1]: Gmsh's physical
+// tags are positive, Medit's references any int.
+bool AttributesAreTags(const ExportMesh& mesh, double lowest = 1)
 {
   if (!mesh.regionAttribute)
     return false;
   for (std::int64_t t = 0; t < mesh.tetCount; ++t)
   {
     const double a = mesh.regionAttribute[t];
-    if (!(a >= 1 && a <= 2147483647.0 && a == std::floor(a)))
+    if (!(a >= lowest && a <= 2147483647.0 && a == std::floor(a)))
       return false;
   }
   return true;
@@ -237,11 +238,46 @@ void WriteTetGen(const ExportMesh& mesh, const std::string& path)
   face.Close();
 }
 
+void WriteMedit(const ExportMesh& mesh, const std::string& path)
+{
+  const bool attributeRefs = AttributesAreTags(mesh, -2147483648.0);
+  const std::vector<BoundaryTriangle> triangles = BoundaryTriangles(mesh);
+  TextFile out(path);
+  out << "MeshVersionFormatted 2\nDimension 3\nVertices\n" << mesh.pointCount << '\n';
+  for (std::int64_t p = 0; p < mesh.pointCount; ++p)
+  {
+    const double* x = mesh.points + 3 * p;
+    out << x[0] << ' ' << x[1] << ' ' << x[2] << " 0\n";
+  }
+  out << "Tetrahedra\n" << mesh.tetCount << '\n';
+  for (std::int64_t t = 0; t < mesh.tetCount; ++t)
+  {
+    for (int i = 0; i < 4; ++i)
+      out << mesh.cells[4 * t + i] + 1 << ' ';
+    out << (attributeRefs ? static_cast<std::int64_t>(mesh.regionAttribute[t])
+                          : RegionOf(mesh, t) + 1)
+        << '\n';
+  }
+  if (!triangles.empty())
+  {
+    out << "Triangles\n" << static_cast<std::int64_t>(triangles.size()) << '\n';
+    for (const BoundaryTriangle& triangle : triangles)
+    {
+      for (std::int64_t v : triangle.v)
+        out << v + 1 << ' ';
+      out << triangle.inputCell + 1 << '\n';
+    }
+  }
+  out << "End\n";
+  out.Close();
+}
+
 } // namespace
 
 bool IsExportExtension(const std::string& lowerExtension)
 {
-  return lowerExtension == ".msh" || lowerExtension == ".node" || lowerExtension == ".ele";
+  return lowerExtension == ".msh" || lowerExtension == ".node" || lowerExtension == ".ele" ||
+    lowerExtension == ".mesh";
 }
 
 void WriteExportMesh(const ExportMesh& mesh, const std::string& path)
@@ -251,8 +287,10 @@ void WriteExportMesh(const ExportMesh& mesh, const std::string& path)
     WriteGmsh22(mesh, path);
   else if (ext == ".node" || ext == ".ele")
     WriteTetGen(mesh, path);
+  else if (ext == ".mesh")
+    WriteMedit(mesh, path);
   else
-    Fail(path, "unknown output type '" + ext + "' (use .vtu, .vtk, .msh, .node or .ele)");
+    Fail(path, "unknown output type '" + ext + "' (use .vtu, .vtk, .msh, .mesh, .node or .ele)");
 }
 
 } // namespace cli

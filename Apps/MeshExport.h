@@ -1,6 +1,7 @@
 // Writing a tetrahedral mesh in the formats of the meshers users come from, for their solvers:
-// Gmsh's ASCII .msh (version 2.2, which Gmsh, meshio, FEniCS's converters and ElmerGrid read)
-// and TetGen's .node/.ele/.face. VTK-free: the lean command line and the VTK part both use it.
+// Gmsh's ASCII .msh (version 2.2, which Gmsh, meshio, FEniCS's converters and ElmerGrid read),
+// TetGen's .node/.ele/.face and Medit's ASCII .mesh (MMG's remeshers, FreeFEM). VTK-free: the
+// lean command line and the VTK part both use it.
 #pragma once
 
 #include <cstdint>
@@ -25,7 +26,7 @@ struct ExportMesh
   const std::int64_t* inputFaceIds = nullptr;
 };
 
-// True for the extensions WriteExportMesh handles: .msh, .node, .ele.
+// True for the extensions WriteExportMesh handles: .msh, .node, .ele, .mesh.
 bool IsExportExtension(const std::string& lowerExtension);
 
 // Writes `mesh` to `path` by its extension. Coordinates are written in the shortest form that
@@ -38,6 +39,9 @@ bool IsExportExtension(const std::string& lowerExtension);
 //  .node or .ele: TetGen's NAME.node (numbered from 0), NAME.ele (attribute: the region
 //        attribute, else RegionId) and NAME.face (marker: the input cell id + 1), NAME being
 //        the path without extension.
+//  .mesh: Medit ASCII (MeshVersionFormatted 2); vertices numbered from 1 with reference 0;
+//        Tetrahedra with reference the region attribute when every one is a whole number
+//        that fits an int, else RegionId + 1; Triangles with reference the input cell id + 1.
 // Throws FileError (SurfaceFiles.h) when a file cannot be written.
 void WriteExportMesh(const ExportMesh& mesh, const std::string& path);
 

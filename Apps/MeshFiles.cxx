@@ -1,6 +1,7 @@
 #include "MeshFiles.h"
 
 #include "GmshFile.h"
+#include "MeditFile.h"
 #include "MeshExport.h"
 #include "MeshReport.h"
 #include "ModuleLoading.h"
@@ -149,6 +150,32 @@ vtkSmartPointer<vtkUnstructuredGrid> ReadGmsh(const std::string& path)
   return grid;
 }
 
+// Medit ASCII .mesh: vertices and tetrahedra (the Tetrahedra section); the rest is skipped.
+vtkSmartPointer<vtkUnstructuredGrid> ReadMedit(const std::string& path)
+{
+  const MeditMesh mesh = ReadMeditMesh(path);
+  if (mesh.tetrahedra.empty())
+    Fail(path, "no tetrahedra (a Tetrahedra section with first-order tetrahedra)");
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  const auto pointCount = static_cast<vtkIdType>(mesh.points.size() / 3);
+  points->SetNumberOfPoints(pointCount);
+  for (vtkIdType i = 0; i < pointCount; ++i)
+    points->SetPoint(i, &mesh.points[static_cast<std::size_t>(3 * i)]);
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  grid->SetPoints(points);
+  const std::size_t tetCount = mesh.tetrahedronRefs.size();
+  grid->Allocate(static_cast<vtkIdType>(tetCount));
+  for (std::size_t t = 0; t < tetCount; ++t)
+  {
+    vtkIdType v[4];
+    for (int k = 0; k < 4; ++k)
+      v[k] = static_cast<vtkIdType>(mesh.tetrahedra[4 * t + static_cast<std::size_t>(k)]);
+    grid->InsertNextCell(VTK_TETRA, 4, v);
+  }
+  return grid;
+}
+
 // A surface of the lean path's readers as vtkPolyData.
 vtkSmartPointer<vtkPolyData> PolyDataOf(const SurfaceData& data)
 {
@@ -185,6 +212,10 @@ vtkSmartPointer<vtkDataSet> ReadVolumeMesh(const std::string& path)
   {
     return ReadGmsh(path);
   }
+  if (ext == ".mesh")
+  {
+    return ReadMedit(path);
+  }
   if (ext == ".vtu" || ext == ".vtp" || ext == ".vts" || ext == ".vtr" || ext == ".vti")
   {
     vtkNew<vtkXMLGenericDataObjectReader> reader;
@@ -205,7 +236,7 @@ vtkSmartPointer<vtkDataSet> ReadVolumeMesh(const std::string& path)
       Fail(path, "does not hold a dataset");
     return data;
   }
-  Fail(path, "unknown file type '" + ext + "' (use .vtu, .vtk, .node/.ele or .msh)");
+  Fail(path, "unknown file type '" + ext + "' (use .vtu, .vtk, .node/.ele, .msh or .mesh)");
 }
 
 vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path, SurfaceData* lists)
@@ -231,6 +262,10 @@ vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path, SurfaceData* l
   if (ext == ".msh")
   {
     return PolyDataOf(ReadGmshSurface(path));
+  }
+  if (ext == ".mesh")
+  {
+    return PolyDataOf(ReadMeditSurface(path));
   }
   if (ext == ".stl" || ext == ".obj" || ext == ".ply")
   {
@@ -258,7 +293,8 @@ vtkSmartPointer<vtkPolyData> ReadSurface(const std::string& path, SurfaceData* l
   {
     Fail(path,
       "unknown surface type '" + ext +
-        "' (use .stl .obj .ply .vtp .vtk .off, TetGen .smesh .poly .face or Gmsh .msh)");
+        "' (use .stl .obj .ply .vtp .vtk .off, TetGen .smesh .poly .face, Gmsh .msh or "
+        "Medit .mesh)");
   }
   return surface;
 }
@@ -359,7 +395,7 @@ void WriteVolumeMesh(vtkUnstructuredGrid* mesh, const std::string& path, bool co
   }
   else
   {
-    Fail(path, "unknown output type '" + ext + "' (use .vtu, .vtk, .msh, .node or .ele)");
+    Fail(path, "unknown output type '" + ext + "' (use .vtu, .vtk, .msh, .mesh, .node or .ele)");
   }
   if (!ok)
   {

@@ -29,11 +29,14 @@ improved by flips, edge removal and smoothing.
 SURFACE: .stl .obj .ply .vtp .vtk .off, TetGen .smesh .poly .face (points from NAME.node
      when the file lists none; the regions of its hole points are removed, its region
      list gives a RegionAttribute cell array), Gmsh .msh (2.2 or 4.1 ASCII: its
-     triangles and quadrangles); input cell ids count the polygons read, in file order
+     triangles and quadrangles), Medit .mesh (ASCII: its Triangles and Quadrilaterals);
+     input cell ids count the polygons read, in file order
 OUT: .vtu or .vtk (VTK), .msh (Gmsh 2.2 ASCII: tets tagged RegionId + 1, or the region
      attribute as physical tag when all are whole numbers from 1; boundary triangles
      input cell id + 1), .node or .ele (TetGen: NAME.node, NAME.ele with the region
-     attribute or RegionId, NAME.face with the input cell id + 1 as marker)
+     attribute or RegionId, NAME.face with the input cell id + 1 as marker), .mesh
+     (Medit ASCII, for MMG: Tetrahedra with reference RegionId + 1, or the region
+     attribute when all are whole numbers; Triangles with the input cell id + 1)
 
 options:
   -o, --output FILE     where to write the mesh (required)
@@ -282,7 +285,8 @@ int ParseMeshOptions(int argc, char* argv[], MeshOptions& o)
   if (outExt != ".vtu" && outExt != ".vtk" && !IsExportExtension(outExt))
   {
     std::fprintf(stderr,
-      "tetmesher mesh: %s: unknown output type '%s' (use .vtu, .vtk, .msh, .node or .ele)\n",
+      "tetmesher mesh: %s: unknown output type '%s' (use .vtu, .vtk, .msh, .mesh, .node or "
+      ".ele)\n",
       o.output.c_str(),
       outExt.c_str());
     return 2;

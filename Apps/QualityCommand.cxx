@@ -26,7 +26,8 @@ Prints the quality of the tetrahedra of MESH: Q = 2*sqrt(6)*r_in/l_max (1 = regu
 0 = flat), its minimum, mean, 1st percentile, the share of tets below 0.1 and 0.3, and the
 extreme dihedral angles.
 
-MESH: .vtu, .vtk, TetGen NAME.node + NAME.ele (give either), Gmsh ASCII .msh (2.2 or 4.1)
+MESH: .vtu, .vtk, TetGen NAME.node + NAME.ele (give either), Gmsh ASCII .msh (2.2 or 4.1),
+      Medit ASCII .mesh (its Tetrahedra)
 
 options:
   --size-array NAME   measure lengths in units of the point array NAME (size-scaled Q)

@@ -2,10 +2,12 @@
 
 #include "FacetHoles.h"
 #include "GmshFile.h"
+#include "MeditFile.h"
 
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
 namespace tetmesher
 {
@@ -293,6 +295,20 @@ SurfaceData ReadGmshSurface(const std::string& path)
   surface.points = mesh.points;
   surface.polygonOffsets = mesh.offsets;
   surface.polygonPoints = mesh.nodes;
+  return surface;
+}
+
+SurfaceData ReadMeditSurface(const std::string& path)
+{
+  MeditMesh mesh = ReadMeditMesh(path);
+  if (mesh.polygonPoints.empty())
+    Fail(path,
+      "no Triangles or Quadrilaterals: tetmesher meshes a closed surface (a volume mesh's "
+      "boundary is its Triangles section)");
+  SurfaceData surface;
+  surface.points = std::move(mesh.points);
+  surface.polygonOffsets = std::move(mesh.polygonOffsets);
+  surface.polygonPoints = std::move(mesh.polygonPoints);
   return surface;
 }
 

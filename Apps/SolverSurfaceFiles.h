@@ -1,11 +1,12 @@
 // Surfaces in the files of the meshers our users come from, for `tetmesher mesh`: TetGen's
-// .smesh, .poly and .face (with its .node), Gmsh's ASCII .msh (formats 2.2 and 4.1). Read
+// .smesh, .poly and .face (with its .node), Gmsh's ASCII .msh (formats 2.2 and 4.1), Medit's
+// ASCII .mesh (MMG, CGAL, FreeFEM; TetGen reads it too). Read
 // without VTK, into the SurfaceData of the other readers, so both paths of the command line
 // mesh them alike.
 //
 // Point ids are the files' points in their order (every point, used by a facet or not, as
 // TetGen meshes them); input cell ids count the polygons read, in file order (TetGen: the
-// facets, or the polygons of .poly facets; Gmsh: its triangles and quadrangles). TetGen's
+// facets, or the polygons of .poly facets; Gmsh and Medit: the triangles and quadrangles). TetGen's
 // hole points go to SurfaceData::holePoints (the mesher removes their regions), its region
 // list to regionPoints and regionMaxSizes. What the mesh cannot honour is refused by name
 // rather than dropped: facets with inner segments or points, polygons nested two deep, Gmsh's
@@ -38,6 +39,11 @@ SurfaceData ReadTetGenSurface(const std::string& path);
 // 2.2 or 4.1, with every node in file order; points, lines and volume elements are skipped.
 // Throws FileError naming the file, line and element.
 SurfaceData ReadGmshSurface(const std::string& path);
+
+// The triangles and quadrilaterals of a Medit ASCII .mesh file (first order, in file order)
+// with every vertex in file order; references, tetrahedra and other sections are not used.
+// Throws FileError naming the file, line and element.
+SurfaceData ReadMeditSurface(const std::string& path);
 
 } // namespace cli
 } // namespace tetmesher
