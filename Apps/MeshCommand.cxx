@@ -91,6 +91,7 @@ int RunMeshWithVtk(const MeshOptions& o)
         mesher->SetControllingSpaceArrayName(o.backgroundArray.c_str());
       }
       mesher->SetEnclosedShellsAreHoles(o.holes);
+      mesher->SetInnerFacets(o.innerFacets);
       holePoints.insert(holePoints.end(), o.holePoints.begin(), o.holePoints.end());
       if (!holePoints.empty())
       {

@@ -67,6 +67,9 @@ options:
   --with-vtk            run through VTK (vtkTetMesher, VTK's reader and writer) even
                         where the lean path needs no VTK; the same output, slower start
   --holes               enclosed shells are holes instead of regions of their own
+  --inner-facets        keep triangles with the volume on both sides (a sheet, a fin on
+                        a wall; open edges allowed) as faces inside their region, as
+                        TetGen's facets (without: such triangles are input defects)
   --hole X,Y,Z          remove the region containing the point (X,Y,Z), as a hole in
                         TetGen's hole list (repeatable; added to a .smesh/.poly's list)
   --point X,Y,Z         make (X,Y,Z) a vertex strictly inside the mesh, as TetGen's -i
@@ -101,6 +104,7 @@ const Flag kFlags[] = { { "--boundary-only", &MeshOptions::boundaryOnly, true },
   { "--timings", &MeshOptions::timings, true },
   { "--compress", &MeshOptions::compress, true },
   { "--holes", &MeshOptions::holes, true },
+  { "--inner-facets", &MeshOptions::innerFacets, true },
   { "--no-check", &MeshOptions::check, false },
   { "-q", &MeshOptions::quiet, true },
   { "--quiet", &MeshOptions::quiet, true } };
@@ -342,6 +346,7 @@ SurfaceMeshSettings SettingsOf(const MeshOptions& o)
   SurfaceMeshSettings settings;
   settings.checkInput = o.check;
   settings.enclosedShellsAreHoles = o.holes;
+  settings.innerFacets = o.innerFacets;
   settings.maximumSteinerPoints = o.maxSteiner;
   settings.refine = o.refine && !o.boundaryOnly;
   settings.sizeScale = o.sizeScale;

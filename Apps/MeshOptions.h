@@ -19,7 +19,8 @@ struct MeshOptions
   std::string input, output;
   bool stats = false, timings = false, compress = false, holes = false, check = true, quiet = false,
        boundaryOnly = false, refine = true, optimize = true;
-  bool withVtk = false; // --with-vtk: through vtkTetMesher and VTK's readers and writers
+  bool withVtk = false;     // --with-vtk: through vtkTetMesher and VTK's readers and writers
+  bool innerFacets = false; // --inner-facets (SurfaceMeshSettings::innerFacets)
   int maxSteiner = -1;
   double passes = 3; // an integer; parsed as the other numbers
   double timeLimit = 0, memoryLimit = 0, dihedralTarget = 25, size = 0, sizeScale = 1, minSize = 0,

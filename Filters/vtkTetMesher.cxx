@@ -232,6 +232,7 @@ void ExchangeSettings(vtkTetMesher* f, tetmesher::SurfaceMeshSettings& s, bool t
     &M::GetEnclosedShellsAreHoles,
     &M::SetEnclosedShellsAreHoles,
     &S::enclosedShellsAreHoles);
+  Exchange(f, s, toFilter, &M::GetInnerFacets, &M::SetInnerFacets, &S::innerFacets);
   Exchange(f,
     s,
     toFilter,
@@ -360,6 +361,7 @@ void vtkTetMesher::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "EnclosedShellsAreHoles: " << this->EnclosedShellsAreHoles << "\n";
+  os << indent << "InnerFacets: " << this->InnerFacets << "\n";
   os << indent
      << "HolePoints: " << (this->HolePoints ? this->HolePoints->GetNumberOfPoints() : vtkIdType(0))
      << "\n";

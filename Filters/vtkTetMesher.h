@@ -68,6 +68,18 @@ public:
 
   ///@{
   /**
+   * Inner facets, as in TetGen's piecewise linear complexes (off by default): input triangles
+   * with the volume on both sides (a free-standing sheet, a fin on a wall, a crack) are kept as
+   * faces inside their region, with open edges allowed. Off, such triangles and open edges
+   * are defects of the input. On, a triangle outside the volume is still an error naming it.
+   */
+  vtkSetMacro(InnerFacets, bool);
+  vtkGetMacro(InnerFacets, bool);
+  vtkBooleanMacro(InnerFacets, bool);
+  ///@}
+
+  ///@{
+  /**
    * Points inside regions to remove, as TetGen's hole list: the region containing each point
    * (a shell's inside, a cavity) is dropped like the exterior. A point outside the surface or
    * on it (decided exactly) fails the run naming the point, and so does a removed region
@@ -342,6 +354,7 @@ protected:
   // The properties the core's job takes: their defaults are those of
   // tetmesher::SurfaceMeshSettings, set by the constructor (the command line shares them).
   bool EnclosedShellsAreHoles{};
+  bool InnerFacets{};
   bool Refine{};
   char* SizeArrayName = nullptr;
   char* ControllingSpaceArrayName = nullptr;

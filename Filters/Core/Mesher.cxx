@@ -97,7 +97,8 @@ MesherResult meshSurface(const double* points,
   if (!result.error.empty())
     return result;
   SurfaceInput surface;
-  result.error = buildSurfaceInput(points, pointCount, triangles, triangleCount, surface);
+  result.error =
+    buildSurfaceInput(points, pointCount, triangles, triangleCount, surface, options.innerFacets);
   if (!result.error.empty())
     return result;
   if (options.validateInput)
@@ -107,6 +108,7 @@ MesherResult meshSurface(const double* points,
     // Bounded: a triangle soup can have a quadratic number of intersecting pairs.
     DiagnosisOptions diagnosisOptions;
     diagnosisOptions.maxRecordsPerKind = 1000;
+    diagnosisOptions.innerFacets = options.innerFacets;
     SurfaceDiagnosis diagnosis =
       diagnoseSurface(points, pointCount, triangles, triangleCount, diagnosisOptions);
     const SurfaceDiagnosis errors = diagnosis.errors();
@@ -295,6 +297,9 @@ MesherResult meshSurface(const double* points,
       // inside a hole, or a hole point's region between the triangle and the exterior.
       result.error =
         unkeptTriangleError(mesh, triangleOf, i, regions.tetRegion, options.holePoints);
+      if (options.innerFacets)
+        result.error += " (with inner facets allowed, a triangle outside the volume is not "
+                        "dropped, and a surface with a hole encloses no volume)";
       result.points.clear();
       result.tets.clear();
       result.regionIds.clear();

@@ -23,6 +23,10 @@ struct MesherOptions
   // shell and the inner ball, 2 regions). When set, components at even depth (the inner ball)
   // are holes and dropped. Side-by-side materials (shared faces) all have depth 1.
   bool enclosedShellsAreHoles = false;
+  // Inner facets, as in TetGen's piecewise linear complexes: triangles with the volume on both
+  // sides (open edges, fins on a wall, free sheets) are kept as faces inside a region (two
+  // tets, one region). One that lies outside the volume is the run's error, naming it.
+  bool innerFacets = false;
   // TetGen's hole list (3 doubles per point): the components containing these points are
   // holes, dropped like the exterior. A point outside the surface or on it is the run's error.
   std::vector<double> holePoints;

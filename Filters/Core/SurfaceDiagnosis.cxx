@@ -388,7 +388,8 @@ private:
       const std::size_t n = j - i;
       if (n == 1)
       {
-        add(SurfaceDefect::OpenEdge, { e.lo, e.hi }, { e.tri });
+        if (!Options.innerFacets)
+          add(SurfaceDefect::OpenEdge, { e.lo, e.hi }, { e.tri });
         sides.unite(front(e.tri), back(e.tri));
       }
       else if (n == 2)
@@ -424,7 +425,7 @@ private:
         tris.push_back(t);
         dangling = dangling || sides.find(front(t)) == sides.find(back(t));
       }
-      if (dangling)
+      if (dangling && !Options.innerFacets)
         add(SurfaceDefect::NonManifoldEdge,
           { uses[range.first].lo, uses[range.first].hi },
           std::move(tris));

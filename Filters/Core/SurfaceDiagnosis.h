@@ -92,6 +92,10 @@ struct DiagnosisOptions
   // spent on hopeless input (e.g. a soup where every triangle crosses many others).
   std::size_t maxRecordsPerKind = 0;
   bool checkSelfIntersections = true;
+  // TetGen's piecewise linear complexes: triangles with the same region on both sides (inner
+  // facets: a free-standing sheet, a fin on a wall) are not defects, nor their open edges.
+  // Whether each lies inside the volume is decided by the mesher (Mesher.h).
+  bool innerFacets = false;
 };
 
 // points: 3 doubles per point; triangles: 3 point ids per triangle.

@@ -16,7 +16,8 @@ std::string buildSurfaceInput(const double* points,
   std::int32_t pointCount,
   const std::int32_t* triangles,
   std::int32_t triangleCount,
-  SurfaceInput& out)
+  SurfaceInput& out,
+  bool openEdges)
 {
   std::ostringstream error;
   out = SurfaceInput();
@@ -82,7 +83,7 @@ std::string buildSurfaceInput(const double* points,
       ++j;
     VertexId a = static_cast<VertexId>(edgeUses[i].first >> 32);
     VertexId b = static_cast<VertexId>(edgeUses[i].first & 0xffffffffu);
-    if (j - i < 2)
+    if (j - i < 2 && !openEdges)
     {
       error << "open edge (" << a << "," << b << ") of triangle " << edgeUses[i].second
             << ": the surface must be closed";

@@ -47,11 +47,14 @@ inline std::array<VertexId, 3> sortedTriangle(VertexId a, VertexId b, VertexId c
 }
 
 // Builds the edge list and checks the structure. Returns an empty string on success, or a
-// message naming the defect and the triangle/edge/point ids.
+// message naming the defect and the triangle/edge/point ids. An edge of one triangle is a
+// defect unless openEdges (inner facets, MesherOptions::innerFacets): its second triangle is
+// then -1, as for an edge of three or more.
 std::string buildSurfaceInput(const double* points,
   std::int32_t pointCount,
   const std::int32_t* triangles,
   std::int32_t triangleCount,
-  SurfaceInput& out);
+  SurfaceInput& out,
+  bool openEdges = false);
 
 } // namespace tetmesher

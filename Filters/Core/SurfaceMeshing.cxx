@@ -63,6 +63,7 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
       const auto begin = std::chrono::steady_clock::now();
       DiagnosisOptions diagnosisOptions;
       diagnosisOptions.maxRecordsPerKind = 1000;
+      diagnosisOptions.innerFacets = settings.innerFacets;
       out.diagnosis = diagnoseSurface(
         input.points, input.pointCount, input.triangles, input.triangleCount, diagnosisOptions);
       if (!out.diagnosis.ok())
@@ -174,6 +175,7 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
   // The surface was checked above (or the user chose not to): not twice.
   options.boundary.validateInput = false;
   options.boundary.enclosedShellsAreHoles = settings.enclosedShellsAreHoles;
+  options.boundary.innerFacets = settings.innerFacets;
   options.boundary.holePoints = input.holePoints;
   options.boundary.regionPoints = input.regionPoints;
   options.boundary.regionMaxSizes = input.regionMaxSizes;

@@ -24,6 +24,7 @@ struct SurfaceMeshSettings
 {
   bool checkInput = true;
   bool enclosedShellsAreHoles = false;
+  bool innerFacets = false; // MesherOptions::innerFacets
   int maximumSteinerPoints = -1;
   bool removeSteinerPoints = true;
   bool refine = true;

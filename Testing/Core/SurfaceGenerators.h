@@ -126,6 +126,28 @@ inline Surface cube(int n = 1)
   return box({ 0, 0, 0 }, { 1, 1, 1 }, { n, n, n });
 }
 
+// cube(2) (its first outerCount triangles) with inner facets (MesherOptions::innerFacets): a
+// free square sheet at z = 0.5 (two triangles, four open edges), then a fin standing on the
+// bottom face's edge from (0.5, 0, 0) to (0.5, 0.5, 0), which then has three triangles.
+inline Surface cubeWithInnerFacets(std::int32_t& outerCount)
+{
+  Surface s = cube(2);
+  outerCount = s.triangleCount();
+  const std::int32_t a = s.addPoint(0.25, 0.25, 0.5), b = s.addPoint(0.75, 0.25, 0.5),
+                     c = s.addPoint(0.75, 0.75, 0.5), d = s.addPoint(0.25, 0.75, 0.5);
+  s.addTriangle(a, b, c);
+  s.addTriangle(a, c, d);
+  std::int32_t p = -1, q = -1;
+  for (std::int32_t v = 0; v < s.pointCount(); ++v)
+  {
+    const double* x = &s.points[3 * static_cast<std::size_t>(v)];
+    if (x[0] == 0.5 && x[2] == 0 && (x[1] == 0 || x[1] == 0.5))
+      (x[1] == 0 ? p : q) = v;
+  }
+  s.addTriangle(p, q, s.addPoint(0.5, 0.25, 0.3));
+  return s;
+}
+
 // Icosahedron subdivided `level` times, projected on the sphere.
 inline Surface icosphere(int level, double radius = 1, std::array<double, 3> c = { 0, 0, 0 })
 {

@@ -16,7 +16,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <map>
 #include <random>
+#include <set>
 #include <string>
 
 using namespace tetmesher;
@@ -752,4 +755,92 @@ TEST(BoundaryMesh, TimeBudgetAndAbortDuringRecovery)
   EXPECT_FALSE(r.ok);
   EXPECT_NE(r.error.find("aborted during boundary recovery"), std::string::npos) << r.error;
   EXPECT_LT(seconds, 5.0);
+}
+
+// Inner facets (MesherOptions::innerFacets, TetGen's dangling facets): a free square sheet
+// inside a cube (four open edges) and a fin on the cube's bottom face (attached along one
+// edge, which then has three triangles) are faces of two tets of the one region; the cube's
+// triangles are exactly the boundary; the volume is the cube's, exactly. Without the option
+// they are input defects; a sheet outside the volume is an error naming it.
+TEST(BoundaryMesh, InnerFacetsAreFacesInsideTheirRegion)
+{
+  std::int32_t outerCount = 0;
+  const Surface s = cubeWithInnerFacets(outerCount);
+
+  MesherOptions without;
+  const MesherResult refused =
+    meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), without);
+  EXPECT_FALSE(refused.ok);
+  EXPECT_NE(refused.error.find("open edge"), std::string::npos) << refused.error;
+
+  MesherOptions options;
+  options.innerFacets = true;
+  const MesherResult r =
+    meshSurface(s.points.data(), s.pointCount(), s.triangles.data(), s.triangleCount(), options);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.regionCount, 1);
+  ASSERT_EQ(std::memcmp(r.points.data(), s.points.data(), sizeof(double) * s.points.size()), 0);
+  std::map<std::array<std::int32_t, 3>, std::vector<std::int32_t>> faceRegions;
+  mpq_class volume = 0;
+  for (std::size_t t = 0; t < r.tets.size() / 4; ++t)
+  {
+    const std::int32_t* v = &r.tets[4 * t];
+    const mpq_class det =
+      det6(&r.points[3 * v[3]], &r.points[3 * v[0]], &r.points[3 * v[1]], &r.points[3 * v[2]]);
+    ASSERT_GT(sgn(det), 0) << "tet " << t;
+    volume += det;
+    static const int faces[4][3] = { { 1, 2, 3 }, { 0, 2, 3 }, { 0, 1, 3 }, { 0, 1, 2 } };
+    for (const auto& f : faces)
+    {
+      std::array<std::int32_t, 3> key = { v[f[0]], v[f[1]], v[f[2]] };
+      std::sort(key.begin(), key.end());
+      faceRegions[key].push_back(r.regionIds[t]);
+    }
+  }
+  std::vector<int> sign(static_cast<std::size_t>(s.triangleCount()), 0);
+  std::fill(sign.begin(), sign.begin() + outerCount, 1);
+  EXPECT_EQ(volume, enclosedVolume6(s, sign));
+  std::set<std::array<std::int32_t, 3>> outer;
+  for (std::int32_t t = 0; t < s.triangleCount(); ++t)
+  {
+    std::array<std::int32_t, 3> key = {
+      s.triangles[3 * t], s.triangles[3 * t + 1], s.triangles[3 * t + 2]
+    };
+    std::sort(key.begin(), key.end());
+    const auto found = faceRegions.find(key);
+    ASSERT_NE(found, faceRegions.end()) << "input triangle " << t << " is not a face";
+    if (t < outerCount)
+    {
+      outer.insert(key);
+      EXPECT_EQ(found->second.size(), 1u) << "cube triangle " << t;
+    }
+    else
+    {
+      ASSERT_EQ(found->second.size(), 2u) << "inner facet " << t;
+      EXPECT_EQ(found->second[0], found->second[1]) << "inner facet " << t;
+    }
+    EXPECT_GE(r.boundaryFaceTet.at(static_cast<std::size_t>(t)), 0);
+  }
+  for (const auto& [key, regions] : faceRegions)
+  {
+    if (regions.size() == 1)
+    {
+      EXPECT_TRUE(outer.count(key)) << "a boundary face that is no cube triangle";
+    }
+  }
+
+  // The sheet moved out of the cube: outside the volume, named.
+  Surface outside = cube(1);
+  const std::int32_t e = outside.addPoint(2, 0, 0), f = outside.addPoint(3, 0, 0),
+                     g = outside.addPoint(2, 1, 0);
+  outside.addTriangle(e, f, g);
+  const MesherResult out = meshSurface(outside.points.data(),
+    outside.pointCount(),
+    outside.triangles.data(),
+    outside.triangleCount(),
+    options);
+  EXPECT_FALSE(out.ok);
+  EXPECT_NE(out.error.find("input triangle 12 bounds no kept tetrahedron: the exterior on both"),
+    std::string::npos)
+    << out.error;
 }

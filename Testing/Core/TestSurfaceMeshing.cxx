@@ -9,7 +9,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cstdlib>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -148,4 +151,55 @@ TEST(SurfaceMeshing, AFlatTetInAThinPartIsTakenOut)
   ASSERT_TRUE(out.ok) << out.error;
   EXPECT_GT(out.quality.summary.minimum, 0.01);
   EXPECT_GT(out.quality.summary.minDihedral, 0.5);
+}
+
+// Inner facets through the whole job (refinement and optimisation included, on one thread
+// and two): each stays a face of two tets of its region, the cube's triangles the boundary.
+TEST(SurfaceMeshing, InnerFacetsStayFacesThroughRefinementAndOptimisation)
+{
+  std::int32_t outerCount = 0;
+  const Job job(gen::cubeWithInnerFacets(outerCount));
+  SurfaceMeshSettings settings;
+  settings.sizeScale = 0.3;
+  const SurfaceMeshOutput refused = runBothWays(job, settings);
+  EXPECT_FALSE(refused.ok);
+  EXPECT_TRUE(startsWith(refused.error, kRefused)) << refused.error;
+  EXPECT_NE(refused.error.find("open edges"), std::string::npos) << refused.error;
+
+  settings.innerFacets = true;
+  const SurfaceMeshOutput out = runBothWays(job, settings);
+  ASSERT_TRUE(out.ok) << out.error;
+  std::map<std::array<std::int64_t, 3>, std::vector<std::int32_t>> faceRegions;
+  const std::size_t tetCount = out.cells.size() / 4;
+  ASSERT_GT(tetCount, 100u);
+  for (std::size_t t = 0; t < tetCount; ++t)
+  {
+    const std::int64_t* v = &out.cells[4 * t];
+    for (int skip = 0; skip < 4; ++skip)
+    {
+      std::array<std::int64_t, 3> key;
+      for (int k = 0, n = 0; k < 4; ++k)
+        if (k != skip)
+          key[static_cast<std::size_t>(n++)] = v[k];
+      std::sort(key.begin(), key.end());
+      faceRegions[key].push_back(out.mesh.regionIds[t]);
+    }
+  }
+  std::size_t boundaryFaces = 0;
+  for (const auto& [key, regions] : faceRegions)
+    boundaryFaces += regions.size() == 1;
+  EXPECT_EQ(boundaryFaces, static_cast<std::size_t>(outerCount));
+  for (std::int32_t t = 0; t < job.surface.triangleCount(); ++t)
+  {
+    const std::int32_t* v = &job.surface.triangles[3 * static_cast<std::size_t>(t)];
+    std::array<std::int64_t, 3> key = { v[0], v[1], v[2] };
+    std::sort(key.begin(), key.end());
+    const auto found = faceRegions.find(key);
+    ASSERT_NE(found, faceRegions.end()) << "input triangle " << t << " is not a face";
+    ASSERT_EQ(found->second.size(), t < outerCount ? 1u : 2u) << "input triangle " << t;
+    if (t >= outerCount)
+    {
+      EXPECT_EQ(found->second[0], found->second[1]) << "inner facet " << t;
+    }
+  }
 }

@@ -247,6 +247,45 @@ with tempfile.TemporaryDirectory() as tmp:
     expect(["mesh", os.path.join(corpus, "sphere.off"), "-o", out, "--size-array", "nope"], 1,
            err_has=["'nope'"])
 
+# Inner facets (--inner-facets, TetGen's dangling facets): a square sheet inside a cube (four
+# open edges) is a defect without the option; with it, on both paths, the same mesh, in which
+# each sheet triangle is a face of two tets of the one region and the cube's 12 triangles are
+# the boundary.
+with tempfile.TemporaryDirectory() as tmp:
+    sheet = os.path.join(tmp, "sheet.off")
+    with open(sheet, "w") as f:
+        f.write("OFF\n12 14 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+                "0.3 0.3 0.5\n0.7 0.3 0.5\n0.7 0.7 0.5\n0.3 0.7 0.5\n"
+                "3 0 2 1\n3 0 3 2\n3 4 5 6\n3 4 6 7\n3 0 1 5\n3 0 5 4\n3 1 2 6\n3 1 6 5\n"
+                "3 2 3 7\n3 2 7 6\n3 3 0 4\n3 3 4 7\n3 8 9 10\n3 8 10 11\n")
+    expect(["mesh", sheet, "-o", os.path.join(tmp, "x.msh")], 1,
+           err_has=["sheet.off", "4 open edges (points 8-9, 8-11, 9-10, 10-11; triangles 12, 13)"])
+    outputs = []
+    for flags in ([], ["--with-vtk"]):
+        msh = os.path.join(tmp, "sheet%d.msh" % len(flags))
+        expect(["mesh", sheet, "-o", msh, "--inner-facets", "--size", "0.1", *flags], 0,
+               out_has=["1 region"])
+        with open(msh) as f:
+            outputs.append(f.read())
+    if outputs[0] != outputs[1]:
+        failures.append("--inner-facets: the lean and VTK paths wrote different meshes")
+    lines = outputs[0].split("\n")
+    first = lines.index("$Elements") + 2
+    elements = [l.split() for l in lines[first:first + int(lines[first - 1])]]
+    faces = {}
+    for e in elements:
+        if e[1] == "4":
+            ids = [int(v) for v in e[5:9]]
+            for k in range(4):
+                faces.setdefault(tuple(sorted(ids[:k] + ids[k + 1:])), []).append(e[4])
+    tags = {tuple(sorted(int(v) for v in e[5:8])): int(e[4]) for e in elements if e[1] == "2"}
+    one_sided = {f for f, regions in faces.items() if len(regions) == 1}
+    sheet_faces = [f for f, cell in tags.items() if cell > 12]
+    if len(tags) != 14 or one_sided != {f for f, cell in tags.items() if cell <= 12} or len(sheet_faces) != 2 \
+            or any(len(faces.get(f, [])) != 2 or len(set(faces[f])) != 1 for f in sheet_faces):
+        failures.append("--inner-facets: the sheet is not two inner faces, or the boundary is not the cube's:\n"
+                        + repr((len(tags), len(one_sided), [faces.get(f) for f in sheet_faces])))
+
 # The executable alone, away from its VTK part (the dynamic twin libexec/tetmesher-vtk of the
 # static build, or libtetmesherVtk.so of the dynamic one): what needs VTK fails with a message
 # that says so, and the lean path still meshes.

@@ -115,4 +115,51 @@ for interior in ([0.01, 0.02, 0.03, 0.3, 0.2, 0.1], []):
     assert result_points[n_nested:].ravel().tolist() == interior, result_points[n_nested:]
 print("TetMesher proxy: InteriorPoints are vertices n, n+1, and emptied none")
 
+# InnerFacets: a square sheet inside a unit cube (four open edges) meshes only with it on, and
+# then each sheet triangle is a face of two tets of the one region, through refinement.
+import tempfile  # noqa: E402
+from vtkmodules.vtkCommonCore import vtkPoints  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData  # noqa: E402
+from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter  # noqa: E402
+from paraview.simple import XMLPolyDataReader as SheetReader  # noqa: E402
+
+corners = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1),
+           (0.3, 0.3, 0.5), (0.7, 0.3, 0.5), (0.7, 0.7, 0.5), (0.3, 0.7, 0.5)]
+sheet_triangles = [(0, 2, 1), (0, 3, 2), (4, 5, 6), (4, 6, 7), (0, 1, 5), (0, 5, 4), (1, 2, 6), (1, 6, 5),
+                   (2, 3, 7), (2, 7, 6), (3, 0, 4), (3, 4, 7), (8, 9, 10), (8, 10, 11)]
+sheet_points, sheet_cells = vtkPoints(), vtkCellArray()
+for c in corners:
+    sheet_points.InsertNextPoint(c)
+for t in sheet_triangles:
+    sheet_cells.InsertNextCell(3, t)
+sheet_poly = vtkPolyData()
+sheet_poly.SetPoints(sheet_points)
+sheet_poly.SetPolys(sheet_cells)
+with tempfile.TemporaryDirectory() as sheet_dir:
+    sheet_file = os.path.join(sheet_dir, "sheet.vtp")
+    sheet_writer = vtkXMLPolyDataWriter()
+    sheet_writer.SetFileName(sheet_file)
+    sheet_writer.SetInputData(sheet_poly)
+    sheet_writer.Write()
+    sheet_mesher = TetMesher(Input=SheetReader(FileName=[sheet_file]), SizeScale=0.1)  # noqa: F821
+    for inner, meshed in ((0, False), (1, True)):
+        sheet_mesher.InnerFacets = inner
+        sheet_mesher.UpdatePipeline()
+        result = servermanager.Fetch(sheet_mesher, arg1=None, arg2=None, idx=0)
+        result_tets = vtk_to_numpy(result.GetCells().GetConnectivityArray()).reshape(-1, 4) \
+            if result.GetNumberOfCells() else np.zeros((0, 4), dtype=np.int64)
+        assert (len(result_tets) > 0) == meshed, (inner, len(result_tets))
+        if meshed:
+            result_regions = vtk_to_numpy(result.GetCellData().GetArray("RegionId"))
+            faces = {}
+            for t, tet in enumerate(result_tets.tolist()):
+                for k in range(4):
+                    faces.setdefault(tuple(sorted(tet[:k] + tet[k + 1:])), []).append(int(result_regions[t]))
+            for tri in sheet_triangles[12:]:
+                regions = faces.get(tuple(sorted(tri)), [])
+                assert len(regions) == 2 and regions[0] == regions[1], (tri, regions)
+            one_sided = sorted(f for f, r in faces.items() if len(r) == 1)
+            assert one_sided == sorted(tuple(sorted(t)) for t in sheet_triangles[:12]), len(one_sided)
+print("TetMesher proxy: InnerFacets keeps a sheet inside a cube as two inner faces, off refuses it")
+
 print("TestPluginPvpython: ok, Q min %.4f mean %.4f" % (q_ref.min(), q_ref.mean()))
