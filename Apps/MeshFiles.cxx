@@ -125,29 +125,37 @@ vtkSmartPointer<vtkUnstructuredGrid> ReadTetGen(const std::string& path)
   return grid;
 }
 
+// A grid of VTK_TETRA cells: xyz per point, 4 point ids (from 0) per tet.
+vtkSmartPointer<vtkUnstructuredGrid> TetGrid(const std::vector<double>& xyz,
+  const std::vector<std::int64_t>& tets)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  const auto pointCount = static_cast<vtkIdType>(xyz.size() / 3);
+  points->SetNumberOfPoints(pointCount);
+  for (vtkIdType i = 0; i < pointCount; ++i)
+    points->SetPoint(i, &xyz[static_cast<std::size_t>(3 * i)]);
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  grid->SetPoints(points);
+  const std::size_t tetCount = tets.size() / 4;
+  grid->Allocate(static_cast<vtkIdType>(tetCount));
+  for (std::size_t t = 0; t < tetCount; ++t)
+  {
+    vtkIdType v[4];
+    for (int k = 0; k < 4; ++k)
+      v[k] = static_cast<vtkIdType>(tets[4 * t + static_cast<std::size_t>(k)]);
+    grid->InsertNextCell(VTK_TETRA, 4, v);
+  }
+  return grid;
+}
+
 // Gmsh ASCII .msh, format 2.2 and 4.1: nodes and 4-node tetrahedra (element type 4);
 // other elements (triangles, lines, points) are skipped.
 vtkSmartPointer<vtkUnstructuredGrid> ReadGmsh(const std::string& path)
 {
   const GmshMesh mesh =
     ReadGmshMesh(path, [](long type, std::string&) { return type == 4 ? 4 : 0; });
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  const auto pointCount = static_cast<vtkIdType>(mesh.points.size() / 3);
-  points->SetNumberOfPoints(pointCount);
-  for (vtkIdType i = 0; i < pointCount; ++i)
-    points->SetPoint(i, &mesh.points[static_cast<std::size_t>(3 * i)]);
-  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
-  grid->SetPoints(points);
-  grid->Allocate(static_cast<vtkIdType>(mesh.ElementCount()));
-  for (std::size_t t = 0; t < mesh.ElementCount(); ++t)
-  {
-    vtkIdType v[4];
-    for (int k = 0; k < 4; ++k)
-      v[k] = static_cast<vtkIdType>(mesh.nodes[4 * t + static_cast<std::size_t>(k)]);
-    grid->InsertNextCell(VTK_TETRA, 4, v);
-  }
-  return grid;
+  return TetGrid(mesh.points, mesh.nodes);
 }
 
 // Medit ASCII .mesh: vertices and tetrahedra (the Tetrahedra section); the rest is skipped.
@@ -156,24 +164,7 @@ vtkSmartPointer<vtkUnstructuredGrid> ReadMedit(const std::string& path)
   const MeditMesh mesh = ReadMeditMesh(path);
   if (mesh.tetrahedra.empty())
     Fail(path, "no tetrahedra (a Tetrahedra section with first-order tetrahedra)");
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  const auto pointCount = static_cast<vtkIdType>(mesh.points.size() / 3);
-  points->SetNumberOfPoints(pointCount);
-  for (vtkIdType i = 0; i < pointCount; ++i)
-    points->SetPoint(i, &mesh.points[static_cast<std::size_t>(3 * i)]);
-  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
-  grid->SetPoints(points);
-  const std::size_t tetCount = mesh.tetrahedronRefs.size();
-  grid->Allocate(static_cast<vtkIdType>(tetCount));
-  for (std::size_t t = 0; t < tetCount; ++t)
-  {
-    vtkIdType v[4];
-    for (int k = 0; k < 4; ++k)
-      v[k] = static_cast<vtkIdType>(mesh.tetrahedra[4 * t + static_cast<std::size_t>(k)]);
-    grid->InsertNextCell(VTK_TETRA, 4, v);
-  }
-  return grid;
+  return TetGrid(mesh.points, mesh.tetrahedra);
 }
 
 // A surface of the lean path's readers as vtkPolyData.

@@ -17,6 +17,8 @@ import subprocess
 import sys
 import tempfile
 
+from off_text import read_off
+
 exe, corpus = sys.argv[1], sys.argv[2]
 failures = []
 CASES = ["sphere.off", "cubes.off", "hole.off", "anchor.off"]
@@ -31,23 +33,6 @@ def check(condition, message):
 def run(args, cwd=None):
     result = subprocess.run([exe, *args], capture_output=True, text=True, timeout=600, cwd=cwd)
     return result.returncode, result.stdout + result.stderr
-
-
-def read_off(path):
-    rows = []
-    with open(path) as f:
-        for line in f:
-            line = line.split("#")[0].split()
-            if line:
-                rows.append(line)
-    header = rows[0]
-    counts = header[1:] if len(header) > 1 else rows[1]
-    start = 1 if len(header) > 1 else 2
-    n, m = int(counts[0]), int(counts[1])
-    points = [tuple(rows[start + i][:3]) for i in range(n)]  # text, as written
-    polygons = [[int(x) for x in rows[start + n + f][1:1 + int(rows[start + n + f][0])]]
-                for f in range(m)]
-    return points, polygons
 
 
 def write(path, lines):

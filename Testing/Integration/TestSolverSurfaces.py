@@ -21,6 +21,8 @@ import subprocess
 import sys
 import tempfile
 
+from off_text import read_off
+
 exe, corpus = sys.argv[1], sys.argv[2]
 failures = []
 CASES = ["sphere.off", "cubes.off", "hole.off", "anchor.off"]
@@ -35,23 +37,6 @@ def check(condition, message):
 def run(args):
     result = subprocess.run([exe, *args], capture_output=True, text=True, timeout=600)
     return result.returncode, result.stdout + result.stderr
-
-
-def read_off(path):
-    tokens = []
-    with open(path) as f:
-        for line in f:
-            line = line.split("#")[0].split()
-            if line:
-                tokens.append(line)
-    header = tokens[0]
-    counts = header[1:] if len(header) > 1 else tokens[1]
-    start = 1 if len(header) > 1 else 2
-    n, m = int(counts[0]), int(counts[1])
-    points = [tuple(tokens[start + i][:3]) for i in range(n)]  # text, as written
-    polygons = [[int(x) for x in tokens[start + n + f][1:1 + int(tokens[start + n + f][0])]]
-                for f in range(m)]
-    return points, polygons
 
 
 def write(path, lines):
