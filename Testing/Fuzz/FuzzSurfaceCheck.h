@@ -159,6 +159,7 @@ inline std::string runFuzzSurface(const std::uint8_t* data, std::size_t size)
   // design, in a mode no product path uses), which is what the earlier runs' slow inputs were.
   DiagnosisOptions diagnosisOptions;
   diagnosisOptions.maxRecordsPerKind = s.limitRecords ? 3 : 1000;
+  diagnosisOptions.innerFacets = s.innerFacets;
   const SurfaceDiagnosis d =
     diagnoseSurface(s.points.data(), n, s.triangles.data(), m, diagnosisOptions);
   if (d.summary().empty())
@@ -177,6 +178,7 @@ inline std::string runFuzzSurface(const std::uint8_t* data, std::size_t size)
 
   MesherOptions options;
   options.enclosedShellsAreHoles = s.enclosedShellsAreHoles;
+  options.innerFacets = s.innerFacets;
   // As for a boundary mesh that is the output (--boundary-only): its flat tets flipped away.
   options.removeFlatTets = true;
   const MesherResult r = meshSurface(s.points.data(), n, s.triangles.data(), m, options);

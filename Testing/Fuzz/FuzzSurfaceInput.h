@@ -23,6 +23,8 @@
 //     flags bit 3: on a surface the mesher accepts (of at most kMaxPipelineTriangles), also
 //                  run the whole pipeline, meshVolume: size field, interior points (at most
 //                  kMaxPipelinePoints), optimisation
+//     flags bit 4: inner facets (MesherOptions::innerFacets, DiagnosisOptions::innerFacets):
+//                  open edges and triangles with one region on both sides pass the checks
 #pragma once
 
 #include <cstddef>
@@ -43,6 +45,7 @@ struct FuzzSurface
   bool meshInvalidInput = false;
   bool limitRecords = false;
   bool fullPipeline = false;
+  bool innerFacets = false;
   std::int32_t pointCount() const { return static_cast<std::int32_t>(points.size() / 3); }
   std::int32_t triangleCount() const { return static_cast<std::int32_t>(triangles.size() / 3); }
 };
@@ -66,6 +69,7 @@ inline FuzzSurface decodeFuzzSurface(const std::uint8_t* data, std::size_t size)
   s.meshInvalidInput = (flags & 2) != 0;
   s.limitRecords = (flags & 4) != 0;
   s.fullPipeline = (flags & 8) != 0;
+  s.innerFacets = (flags & 16) != 0;
   std::size_t pos = 1;
   std::size_t n = 0;
   if (mode == 0 || mode == 1)
