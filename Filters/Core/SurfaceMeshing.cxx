@@ -98,7 +98,16 @@ SurfaceMeshOutput meshSurface(const SurfaceMeshInput& input, const SurfaceMeshSe
     }
     if (!settings.checkInput || out.diagnosis.ok())
       return "";
-    return "the input surface cannot be meshed:\n" + out.diagnosis.errors().summary(10) + idNote;
+    // Open edges and fins are what TetGen's users meet when their facets lie inside the
+    // volume: say how to keep such facets (a surface with a hole must still be closed).
+    const SurfaceDiagnosis errors = out.diagnosis.errors();
+    const bool facetLike =
+      errors.count(SurfaceDefect::OpenEdge) > 0 || errors.count(SurfaceDefect::NonManifoldEdge) > 0;
+    const std::string facetNote = facetLike
+      ? "\n(a surface with a hole must be closed; triangles with the volume on both sides, such "
+        "as a sheet or a fin inside it, are kept with --inner-facets, the InnerFacets property)"
+      : "";
+    return "the input surface cannot be meshed:\n" + errors.summary(10) + idNote + facetNote;
   };
   struct JoinAtExit
   {

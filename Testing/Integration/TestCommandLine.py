@@ -259,7 +259,8 @@ with tempfile.TemporaryDirectory() as tmp:
                 "3 0 2 1\n3 0 3 2\n3 4 5 6\n3 4 6 7\n3 0 1 5\n3 0 5 4\n3 1 2 6\n3 1 6 5\n"
                 "3 2 3 7\n3 2 7 6\n3 3 0 4\n3 3 4 7\n3 8 9 10\n3 8 10 11\n")
     expect(["mesh", sheet, "-o", os.path.join(tmp, "x.msh")], 1,
-           err_has=["sheet.off", "4 open edges (points 8-9, 8-11, 9-10, 10-11; triangles 12, 13)"])
+           err_has=["sheet.off", "4 open edges (points 8-9, 8-11, 9-10, 10-11; triangles 12, 13)",
+                    "are kept with --inner-facets"])
     outputs = []
     for flags in ([], ["--with-vtk"]):
         msh = os.path.join(tmp, "sheet%d.msh" % len(flags))
