@@ -207,9 +207,10 @@ MeditMesh ReadMeditMesh(const std::string& path)
     else if (const int size = SkippedSize(keyword))
     {
       const long n = count(keyword);
-      for (long i = 0; i < static_cast<long>(size) * n; ++i)
-        if (!in.Next(token))
-          in.Fail("the file ends inside the " + std::string(keyword) + " section");
+      for (long i = 0; i < n; ++i) // (size * n could overflow on a corrupt count)
+        for (int k = 0; k < size; ++k)
+          if (!in.Next(token))
+            in.Fail("the file ends inside the " + std::string(keyword) + " section");
     }
     else
       in.Fail("unknown keyword '" + token + "'");

@@ -195,6 +195,10 @@ with tempfile.TemporaryDirectory() as tmp:
                         "second-order (curved) triangles (TrianglesP2)"),
         "notmedit.mesh": (["OFF", "0 0 0"], "not a Medit .mesh file (it starts with 'OFF'"),
         "empty.mesh": (head + square + ["End"], "no Triangles or Quadrilaterals"),
+        "count.mesh": (head + ["Corners 9223372036854775807", "1 2"],
+                       "line 4: the file ends inside the corners section"),
+        "toobig.mesh": (head + ["Corners 92233720368547758070"],
+                        "line 3: expected the number of corners, read '92233720368547758070'"),
     }
     for name, (lines, message) in sorted(defects.items()):
         write(os.path.join(tmp, name), lines)
