@@ -2,8 +2,6 @@
 
 #include "SurfaceFiles.h"
 
-#include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <sstream>
@@ -60,15 +58,6 @@ private:
   std::istringstream line_;
   std::string token_;
 };
-
-std::string Lower(std::string text)
-{
-  std::transform(text.begin(),
-    text.end(),
-    text.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
-}
 
 // Sections skipped: the numbers per entity that follow their count.
 int SkippedSize(const std::string& keyword)
@@ -127,7 +116,7 @@ MeditMesh ReadMeditMesh(const std::string& path)
   };
   while (in.Next(token))
   {
-    const std::string keyword = Lower(token);
+    const std::string keyword = LowerCase(token);
     if (keyword == "meshversionformatted")
     {
       int version = 0;

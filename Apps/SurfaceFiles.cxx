@@ -56,12 +56,16 @@ std::string LowerExtension(const std::string& path)
   {
     return "";
   }
-  std::string ext = path.substr(dot);
-  std::transform(ext.begin(),
-    ext.end(),
-    ext.begin(),
+  return LowerCase(path.substr(dot));
+}
+
+std::string LowerCase(std::string text)
+{
+  std::transform(text.begin(),
+    text.end(),
+    text.begin(),
     [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
+  return text;
 }
 
 bool ReadWholeFile(const std::string& path, std::string& text)

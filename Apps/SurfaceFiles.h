@@ -33,6 +33,9 @@ void RequireReadableFile(const std::string& path);
 // ".vtu" for "a/b.VTU"; "" without an extension.
 std::string LowerExtension(const std::string& path);
 
+// `text` in lower case (ASCII), e.g. a keyword read case-insensitively.
+std::string LowerCase(std::string text);
+
 // The whole file as bytes; false when it cannot be read.
 bool ReadWholeFile(const std::string& path, std::string& bytes);
 

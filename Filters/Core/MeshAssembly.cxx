@@ -21,7 +21,8 @@ struct FaceEntry
 bool assembleRegionMesh(const std::vector<double>& points,
   const std::vector<std::int32_t>& tets,
   const std::vector<std::int32_t>& regionIds,
-  RegionMesh& out)
+  RegionMesh& out,
+  const std::vector<std::int32_t>& inputFaces)
 {
   out = RegionMesh{};
   out.mesh.coords = points;
@@ -106,6 +107,17 @@ bool assembleRegionMesh(const std::vector<double>& points,
     for (int f = 0; f < 4; ++f)
       if (out.mesh.neighbor(static_cast<TetId>(t), f) == kNoNeighbor)
         out.mesh.setConstrained(static_cast<TetId>(t), f, true);
+  for (const std::int32_t face : inputFaces)
+  {
+    if (face < 0)
+      continue;
+    if (static_cast<std::size_t>(faceTet(face)) >= tetCount)
+      return false;
+    out.mesh.setConstrained(faceTet(face), faceIndex(face), true);
+    const FaceRef across = out.mesh.neighbor(faceTet(face), faceIndex(face));
+    if (across != kNoNeighbor)
+      out.mesh.setConstrained(faceTet(across), faceIndex(across), true);
+  }
   return true;
 }
 

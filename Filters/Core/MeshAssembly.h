@@ -19,13 +19,16 @@ struct RegionMesh
 };
 
 // Builds the adjacency of `tets` (positively oriented in TetMesh's convention). Faces with
-// no neighbour (the boundary) and faces between tets of different regions (interfaces) are
-// marked constrained on both sides, so insertions and flips never cross or change them.
-// Returns false if a face is shared by more than two tets or a tet names no point of `points`.
+// no neighbour (the boundary), faces between tets of different regions (interfaces) and the
+// faces `inputFaces` names (4*t+f, -1 skipped: the input triangles, which include inner facets
+// with one region on both sides) are marked constrained on both sides, so insertions and flips
+// never cross or change them. Returns false if a face is shared by more than two tets, a tet
+// names no point of `points`, or an input face no tet.
 bool assembleRegionMesh(const std::vector<double>& points,
   const std::vector<std::int32_t>& tets,
   const std::vector<std::int32_t>& regionIds,
-  RegionMesh& out);
+  RegionMesh& out,
+  const std::vector<std::int32_t>& inputFaces = {});
 
 // Writes the live tets of `in` back to flat arrays (deleted slots dropped, vertex ids kept).
 void extractRegionMesh(const RegionMesh& in,

@@ -119,24 +119,13 @@ VolumeMeshResult meshVolume(const double* points,
   }
 
   RegionMesh mesh;
-  if (!assembleRegionMesh(boundary.points, boundary.tets, boundary.regionIds, mesh))
+  // The input triangles' faces are locked too: an inner facet (MesherOptions::innerFacets) has
+  // one region on both sides, neither boundary nor interface.
+  if (!assembleRegionMesh(
+        boundary.points, boundary.tets, boundary.regionIds, mesh, boundary.boundaryFaceTet))
   {
     result.error = "internal error: the boundary mesh has a face shared by more than two tets";
     return result;
-  }
-  // Inner facets (MesherOptions::innerFacets) have one region on both sides, where the assembly
-  // marks only the boundary and the interfaces: every input triangle's face is marked, so
-  // that no insertion or flip crosses or changes it (a no-op for the others).
-  for (const std::int32_t ref : boundary.boundaryFaceTet)
-  {
-    if (ref < 0)
-      continue;
-    const TetId t = faceTet(ref);
-    const int f = faceIndex(ref);
-    mesh.mesh.setConstrained(t, f, true);
-    const FaceRef across = mesh.mesh.neighbor(t, f);
-    if (across != kNoNeighbor)
-      mesh.mesh.setConstrained(faceTet(across), faceIndex(across), true);
   }
   lap("mesh assembly");
   // Given interior points (GivenPoints.h): mesh ids from here, output ids from pointCount on.

@@ -99,3 +99,19 @@ TEST(MeshAssembly, RefusesAVertexIdWithoutAPoint)
   EXPECT_FALSE(tetmesher::assembleRegionMesh(points, { 0, 1, 2, 4 }, {}, out));
   EXPECT_FALSE(tetmesher::assembleRegionMesh(points, { 0, 1, -1, 3 }, {}, out));
 }
+
+TEST(MeshAssembly, InputFacesAreConstrainedInsideARegion)
+{
+  // Two tets of one region sharing face (0,1,2), opposite vertex 3 in the first (face 3) and
+  // vertex 4 in the second (face 3): an inner facet only when named as an input face.
+  std::vector<double> points = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, -1 };
+  const std::vector<std::int32_t> tets = { 0, 1, 2, 3, 0, 2, 1, 4 };
+  tetmesher::RegionMesh plain, inner;
+  ASSERT_TRUE(tetmesher::assembleRegionMesh(points, tets, { 0, 0 }, plain));
+  EXPECT_FALSE(plain.mesh.isConstrained(0, 3));
+  EXPECT_FALSE(plain.mesh.isConstrained(1, 3));
+  ASSERT_TRUE(tetmesher::assembleRegionMesh(points, tets, { 0, 0 }, inner, { -1, 3 }));
+  EXPECT_TRUE(inner.mesh.isConstrained(0, 3));
+  EXPECT_TRUE(inner.mesh.isConstrained(1, 3));
+  EXPECT_FALSE(tetmesher::assembleRegionMesh(points, tets, { 0, 0 }, inner, { 8 }));
+}
