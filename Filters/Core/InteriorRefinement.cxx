@@ -874,9 +874,17 @@ RefinementResult refineInterior(RegionMesh& regionMesh,
       hp = std::max(sizeCeiling.at(p, hp), std::min(hp, sizeOptions.minSize));
     return hp;
   };
-  for (VertexId v = 0; v < initialCount; ++v)
-    h[v] = boundToSurface(
-      mesh.point(v), h[v], regionCaps ? vertexCap[static_cast<std::size_t>(v)] : kNoCap);
+  // Each vertex on its own (the floor and ceiling are read only): in two halves from 2048
+  // vertices (fandisk.off at h: 6.5k surface points, 7 ms on one thread).
+  splitAt(initialCount >= 2048 && wantTwoThreads(0),
+    initialCount / 2,
+    initialCount,
+    [&](int, VertexId first, VertexId last)
+    {
+      for (VertexId v = first; v < last; ++v)
+        h[v] = boundToSurface(
+          mesh.point(v), h[v], regionCaps ? vertexCap[static_cast<std::size_t>(v)] : kNoCap);
+    });
   double minH = std::numeric_limits<double>::max();
   for (VertexId v = 0; v < initialCount; ++v)
     minH = std::min({ minH, h[v], wanted[v] });
