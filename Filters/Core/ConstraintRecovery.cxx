@@ -285,7 +285,9 @@ private:
   ItemCost edgeAndFacesCost(std::size_t e) const;
   std::array<double, 6> boxOf(std::initializer_list<VertexId> vertices) const;
   // Tets whose tet/face/edge terms of `cost` are positive, grown from the star of `seed`.
-  void collectPipe(VertexId seed, const FlipCost& cost, std::vector<TetId>& pipe);
+  // `tip`: when cost is that of input edge (seed, tip) alone, the other end (else -1), for
+  // the cone test outside a flip search (refillEdgeCavity).
+  void collectPipe(VertexId seed, const FlipCost& cost, std::vector<TetId>& pipe, VertexId tip = -1);
   // Sum of the measure over t and its faces and edges; cached per tet (checked against its
   // vertices) while the cost is the current flip search's.
   int tetCost(const FlipCost& cost, TetId t);
@@ -844,7 +846,7 @@ int Recovery::exactTetCost(const FlipCost& cost, const TetVertices& v) const
   return c;
 }
 
-void Recovery::collectPipe(VertexId seed, const FlipCost& cost, std::vector<TetId>& pipe)
+void Recovery::collectPipe(VertexId seed, const FlipCost& cost, std::vector<TetId>& pipe, VertexId tip)
 {
   std::vector<TetId>& star = starScratch_;
   vertexStar(mesh_, index_, seed, star);
@@ -872,7 +874,16 @@ void Recovery::collectPipe(VertexId seed, const FlipCost& cost, std::vector<TetI
   const bool coneTest = &cost == tetCostOwner_ && seed == coneApex_;
   for (TetId t : star)
   {
-    if (coneTest)
+    if (tip >= 0 && !coneTest)
+    {
+      // The same test, uncached: the refill of a cavity walks each star once.
+      const TetVertices v = tetVertices(t);
+      const double* p[4] = { point(v[0]), point(v[1]), point(v[2]), point(v[3]) };
+      const int i = v[0] == seed ? 0 : v[1] == seed ? 1 : v[2] == seed ? 2 : 3;
+      if (geometry::segmentFromVertexMissesTet(p, i, point(tip)))
+        continue;
+    }
+    else if (coneTest)
     {
       const TetVertices v = tetVertices(t);
       if (static_cast<std::size_t>(t) >= coneCache_.size())
@@ -1309,7 +1320,7 @@ bool Recovery::refillEdgeCavity(std::size_t e, const FlipCost& cost, int maxTets
   std::vector<TetVertices> cone;
   for (int k = 0; k < 2; ++k)
   {
-    collectPipe(ends[k], cost, cavity);
+    collectPipe(ends[k], cost, cavity, ends[1 - k]);
     if (cavity.empty() ||
       !coneFromVertex(mesh_, ends[k], cavity, keep, CavityConeLimits{ maxTets }, cone))
       continue;
