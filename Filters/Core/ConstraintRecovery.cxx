@@ -287,7 +287,10 @@ private:
   // Tets whose tet/face/edge terms of `cost` are positive, grown from the star of `seed`.
   // `tip`: when cost is that of input edge (seed, tip) alone, the other end (else -1), for
   // the cone test outside a flip search (refillEdgeCavity).
-  void collectPipe(VertexId seed, const FlipCost& cost, std::vector<TetId>& pipe, VertexId tip = -1);
+  void collectPipe(VertexId seed,
+    const FlipCost& cost,
+    std::vector<TetId>& pipe,
+    VertexId tip = -1);
   // Sum of the measure over t and its faces and edges; cached per tet (checked against its
   // vertices) while the cost is the current flip search's.
   int tetCost(const FlipCost& cost, TetId t);
@@ -846,7 +849,10 @@ int Recovery::exactTetCost(const FlipCost& cost, const TetVertices& v) const
   return c;
 }
 
-void Recovery::collectPipe(VertexId seed, const FlipCost& cost, std::vector<TetId>& pipe, VertexId tip)
+void Recovery::collectPipe(VertexId seed,
+  const FlipCost& cost,
+  std::vector<TetId>& pipe,
+  VertexId tip)
 {
   std::vector<TetId>& star = starScratch_;
   vertexStar(mesh_, index_, seed, star);
