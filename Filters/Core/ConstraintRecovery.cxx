@@ -877,33 +877,31 @@ void Recovery::collectPipe(VertexId seed,
     visit(t);
   // In the search for an edge alone, seeded at its end a, most of a's star lies away from the
   // edge: three orientations at a rule a tet out, instead of pricing its 11 entities.
+  // In the flip search the answers are cached per tet (its star is walked again for every
+  // move); the refill of a cavity (tip given) walks each star once.
   const bool coneTest = &cost == tetCostOwner_ && seed == coneApex_;
+  const VertexId coneEnd = coneTest ? coneTip_ : tip;
+  auto segmentMisses = [&](const TetVertices& v)
+  {
+    const double* p[4] = { point(v[0]), point(v[1]), point(v[2]), point(v[3]) };
+    const int i = v[0] == seed ? 0 : v[1] == seed ? 1 : v[2] == seed ? 2 : 3;
+    return geometry::segmentFromVertexMissesTet(p, i, point(coneEnd));
+  };
   for (TetId t : star)
   {
-    if (tip >= 0 && !coneTest)
-    {
-      // The same test, uncached: the refill of a cavity walks each star once.
-      const TetVertices v = tetVertices(t);
-      const double* p[4] = { point(v[0]), point(v[1]), point(v[2]), point(v[3]) };
-      const int i = v[0] == seed ? 0 : v[1] == seed ? 1 : v[2] == seed ? 2 : 3;
-      if (geometry::segmentFromVertexMissesTet(p, i, point(tip)))
-        continue;
-    }
-    else if (coneTest)
+    if (coneTest)
     {
       const TetVertices v = tetVertices(t);
       if (static_cast<std::size_t>(t) >= coneCache_.size())
         coneCache_.resize(2 * static_cast<std::size_t>(t) + 16);
       ConeEntry& entry = coneCache_[t];
       if (entry.epoch != tetCostEpoch_ || entry.vertices != v)
-      {
-        const double* p[4] = { point(v[0]), point(v[1]), point(v[2]), point(v[3]) };
-        const int i = v[0] == seed ? 0 : v[1] == seed ? 1 : v[2] == seed ? 2 : 3;
-        entry = { v, tetCostEpoch_, geometry::segmentFromVertexMissesTet(p, i, point(coneTip_)) };
-      }
+        entry = { v, tetCostEpoch_, segmentMisses(v) };
       if (entry.misses)
         continue;
     }
+    else if (coneEnd >= 0 && segmentMisses(tetVertices(t)))
+      continue;
     if (tetCost(cost, t) > 0)
       pipe.push_back(t);
   }
