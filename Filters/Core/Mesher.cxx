@@ -191,6 +191,7 @@ MesherResult meshSurface(const double* points,
   regionOptions.regionMaxSizes = options.regionMaxSizes;
   if (options.removeSteinerPoints && !recovery.steinerVertices.empty())
   {
+    const auto removalStart = std::chrono::steady_clock::now();
     // Steiner points outside every region go with the exterior tets (stage 3), and removing
     // them would change no kept tet (no move crosses a constrained face): only the others
     // are removed. Classifying is one flood fill, and the moves keep every region.
@@ -214,6 +215,7 @@ MesherResult meshSurface(const double* points,
         kept.push_back(v);
     }
     removeSteinerPoints(mesh, kept);
+    result.steinerRemovalSeconds = secondsSince(removalStart);
   }
   result.recoverySeconds = secondsSince(stageStart);
 

@@ -85,6 +85,7 @@ struct MesherResult
   double flatTetSeconds = 0;
   double delaunaySeconds = 0;
   double recoverySeconds = 0;
+  double steinerRemovalSeconds = 0; // the part of recoverySeconds that removeSteinerPoints took
   double regionsSeconds = 0;
   double totalSeconds = 0;
 };

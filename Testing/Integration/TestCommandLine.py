@@ -135,6 +135,10 @@ with tempfile.TemporaryDirectory() as tmp:
     expect(["mesh", os.path.join(corpus, "sphere.off"), "-o", out, "-q", "--compress"], 0)
     if not os.path.getsize(out) < size_raw:
         failures.append(f"--compress: {os.path.getsize(out)} bytes, not fewer than {size_raw}")
+    # With recovery Steiner points, the time of their removal too (a part of the recovery's).
+    expect(["mesh", os.path.join(corpus, "anchor.off"), "-o", out, "-q", "--boundary-only",
+            "--timings"], 0,
+           out_has=["boundary recovery\n", "(Steiner point removal, within the above)\n"])
     expect(["mesh", os.path.join(corpus, "nested_spheres.vtp"), "-o", out, "-q", "--holes"], 0,
            out_has=["1 region"])
     expect(["mesh", os.path.join(corpus, "turbine.off"), "-o", out, "-q", "--time-limit", "0.05"], 1,
